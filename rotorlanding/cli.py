@@ -1,0 +1,156 @@
+"""Command line: ``rotorlanding modes|reduce ...``.
+
+Bad input never shows a traceback: an :class:`InputError` prints one line naming the file, field,
+value and what is allowed, and the exit code is 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+import numpy as np
+
+from . import __version__
+from .errors import InputError
+
+EXIT_INPUT = 2
+
+
+def _speeds(text: str) -> list[float]:
+    out = []
+    for part in text.split(","):
+        part = part.strip()
+        try:
+            v = float(part)
+        except ValueError:
+            raise InputError("--speeds-rpm", text, "must be a comma-separated list of numbers, e.g. 0,3000,7000") from None
+        if not np.isfinite(v) or v < 0:
+            raise InputError("--speeds-rpm", part, "speeds must be finite and >= 0 rpm")
+        out.append(v)
+    return out
+
+
+def _linear_model(path: str, model: str, free: bool):
+    from .reduction import full_model, reduce_rotor
+    from .rotor import load_rotor
+    from .timoshenko import assemble
+
+    rotor = load_rotor(path)
+    fe = assemble(rotor)
+    if model == "reduced":
+        try:
+            system = reduce_rotor(fe)
+        except InputError as err:
+            raise err.with_file(path) from None
+        label = f"Craig-Bampton ({len(system.boundary)} boundary DOFs + {system.n_modes} modes)"
+    else:
+        system = full_model(fe)
+        label = f"full FE ({len(fe.nodes)} nodes, {fe.ndof} DOFs)"
+    if not free:
+        system = system.with_supports()
+        label += f", {len(rotor.supports)} linear supports"
+    else:
+        label += ", free (supports ignored)"
+    return rotor, system, label
+
+
+def cmd_modes(args) -> int:
+    from .modal import campbell, plot_campbell
+
+    speeds = _speeds(args.speeds_rpm)
+    if args.n_modes < 1:
+        raise InputError("--n-modes", args.n_modes, "must be >= 1")
+    rotor, system, label = _linear_model(args.file, args.model, args.free)
+    results = campbell(system, speeds, args.n_modes)
+    if args.plot:
+        top = max(max(speeds), rotor.max_speed_rpm)
+        dense = np.linspace(0.0, top, 41)
+        plot_campbell(campbell(system, dense, args.n_modes), args.plot,
+                      title=f"Campbell diagram: {rotor.name}\n{label}")
+    if args.json:
+        out = {"speeds_rpm": speeds, "model": label,
+               "modes": [[m.to_dict() for m in r.modes] for r in results]}
+        print(json.dumps(out))
+    else:
+        print(f"rotor: {rotor.name} ({args.file}); model: {label}")
+        print(f"{'speed_rpm':>10} {'mode':>4} {'frequency_hz':>13} {'damping_ratio':>13}  whirl")
+        for r in results:
+            for k, m in enumerate(r.modes, 1):
+                print(f"{r.speed_rpm:10.0f} {k:4d} {m.frequency_hz:13.3f} {m.damping_ratio:13.5f}  {m.whirl}")
+        if args.plot:
+            print(f"Campbell diagram written to {args.plot}")
+    return 0
+
+
+def cmd_reduce(args) -> int:
+    from .modal import reduction_report
+    from .reduction import full_model, reduce_rotor
+    from .rotor import load_rotor
+    from .timoshenko import assemble
+
+    speeds = _speeds(args.speeds_rpm)
+    rotor = load_rotor(args.file)
+    fe = assemble(rotor)
+    try:
+        red = reduce_rotor(fe)
+    except InputError as err:
+        raise err.with_file(args.file) from None
+    full, red = full_model(fe), red
+    if not args.free:
+        full, red = full.with_supports(), red.with_supports()
+    f_limit = 2.0 * rotor.max_speed_rpm / 60.0 if args.f_limit_hz is None else args.f_limit_hz
+    rows = reduction_report(full, red, speeds, f_limit)
+    if args.json:
+        print(json.dumps({"f_limit_hz": f_limit, "full_dofs": fe.ndof, "reduced_dofs": red.n, "rows": rows}))
+        return 0
+    print(f"Craig-Bampton check: {fe.ndof} -> {red.n} coordinates "
+          f"({len(red.boundary)} boundary + {red.n_modes} modes), modes below {f_limit:.1f} Hz")
+    print(f"{'speed_rpm':>10} {'mode':>4} {'full_hz':>10} {'reduced_hz':>10} {'error_%':>8}  whirl")
+    for r in rows:
+        print(f"{r['speed_rpm']:10.0f} {r['mode']:4d} {r['full_hz']:10.3f} {r['reduced_hz']:10.3f} "
+              f"{100 * r['relative_error']:8.4f}  {r['whirl']}")
+    worst = max((abs(r["relative_error"]) for r in rows), default=0.0)
+    print(f"largest relative error: {100 * worst:.4f} %")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
+    p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
+    sub = p.add_subparsers(dest="command", required=True)
+
+    m = sub.add_parser("modes", help="damped natural frequencies, whirl labels and Campbell diagram")
+    m.add_argument("file", help="rotor TOML file, or a scenario file containing [rotor]")
+    m.add_argument("--speeds-rpm", default="0", help="comma-separated spin speeds in rpm (default 0)")
+    m.add_argument("--json", action="store_true", help="print one JSON object instead of a table")
+    m.add_argument("--plot", metavar="PNG", help="write a Campbell diagram (0 .. max speed) to this PNG")
+    m.add_argument("--n-modes", type=int, default=8, help="number of elastic modes to report (default 8)")
+    m.add_argument("--model", choices=["full", "reduced"], default="full",
+                   help="full FE model (default) or the Craig-Bampton model of [rotor.reduction]")
+    m.add_argument("--free", action="store_true", help="ignore [[rotor.supports]] (free-free rotor)")
+    m.set_defaults(func=cmd_modes)
+
+    r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
+    r.add_argument("file")
+    r.add_argument("--speeds-rpm", default="0,10000")
+    r.add_argument("--f-limit-hz", type=float, default=None,
+                   help="compare modes below this frequency (default 2 x max_speed_rpm / 60)")
+    r.add_argument("--free", action="store_true", help="ignore supports")
+    r.add_argument("--json", action="store_true")
+    r.set_defaults(func=cmd_reduce)
+    return p
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except InputError as err:
+        print(f"rotorlanding: error: {err}", file=sys.stderr)
+        return EXIT_INPUT
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

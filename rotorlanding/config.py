@@ -1,0 +1,77 @@
+"""TOML input: loading with ``include``, deep merge, dotted overrides.
+
+A file may start with ``include = ["rig/rig.toml", ...]``: the included files (paths relative to
+the including file) are loaded first, in order, and the including file's own tables are merged
+on top (tables merge key by key, any other value replaces). This is how every paper scenario
+shares one rig parameter file.
+"""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from pathlib import Path
+
+from .errors import InputError
+
+MAX_INCLUDE_DEPTH = 8
+
+
+def deep_merge(base: dict, top: dict) -> dict:
+    """Return ``base`` updated by ``top``; nested tables merge, other values replace."""
+    out = copy.deepcopy(base)
+    for key, value in top.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = deep_merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def load_toml(path, _depth: int = 0) -> dict:
+    """Load a TOML file, resolving ``include``; errors name the file."""
+    path = Path(path)
+    if _depth > MAX_INCLUDE_DEPTH:
+        raise InputError("include", str(path), f"include depth exceeds {MAX_INCLUDE_DEPTH} (circular include?)")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError("file", str(path), "file not found") from None
+    except OSError as exc:
+        raise InputError("file", str(path), f"cannot be read ({exc.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError("(syntax)", str(exc).split("\n")[0], "malformed TOML", file=str(path)) from None
+    includes = data.pop("include", [])
+    if isinstance(includes, str):
+        includes = [includes]
+    if not isinstance(includes, list) or not all(isinstance(s, str) for s in includes):
+        raise InputError("include", includes, "must be a list of file paths", file=str(path))
+    merged: dict = {}
+    for inc in includes:
+        merged = deep_merge(merged, load_toml(path.parent / inc, _depth + 1))
+    return deep_merge(merged, data)
+
+
+def parse_value(text: str):
+    """Parse the value of a ``--set key=value`` override as a TOML value (bare words -> strings)."""
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True) -> None:
+    """Set ``data['a']['b'] = value`` for ``'a.b'``; unknown keys are an error when ``must_exist``."""
+    parts = dotted_key.split(".")
+    node = data
+    for i, part in enumerate(parts[:-1]):
+        if not isinstance(node, dict) or part not in node:
+            if must_exist:
+                raise InputError(dotted_key, value, f"no such key '{'.'.join(parts[: i + 1])}' in the input")
+            node.setdefault(part, {})
+        node = node[part]
+    if not isinstance(node, dict) or (must_exist and parts[-1] not in node):
+        raise InputError(dotted_key, value, "no such key in the input")
+    node[parts[-1]] = value

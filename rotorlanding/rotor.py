@@ -1,0 +1,302 @@
+"""Rotor description: the ``[rotor]`` table of a rotor or scenario TOML file.
+
+Read with :func:`load_rotor` (file) or :func:`rotor_from_dict` (already-parsed table). Every field
+is checked; a problem raises :class:`~rotorlanding.errors.InputError` naming the file, the dotted
+field (``rotor.sections[2].outer_diameter``), the value and what is allowed. Unknown keys are
+errors too, so a typo never silently falls back to a default. Field reference with units:
+``docs/rotor_file.md``.
+
+Axial positions are measured in metres along the rotor axis x from the left end of the first
+shaft section (x = 0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .config import load_toml
+from .errors import InputError
+
+
+@dataclass(frozen=True)
+class Material:
+    name: str
+    youngs_modulus: float  # Pa
+    shear_modulus: float  # Pa
+    density: float  # kg/m^3
+    poisson_ratio: float  # -
+
+
+@dataclass(frozen=True)
+class ShaftSection:
+    length: float  # m
+    outer_diameter: float  # m
+    inner_diameter: float  # m
+    material: Material
+    elements: int
+
+    @property
+    def area(self) -> float:
+        return math.pi / 4.0 * (self.outer_diameter**2 - self.inner_diameter**2)
+
+    @property
+    def second_moment(self) -> float:
+        return math.pi / 64.0 * (self.outer_diameter**4 - self.inner_diameter**4)
+
+
+@dataclass(frozen=True)
+class Disk:
+    name: str
+    position: float  # m
+    mass: float  # kg
+    polar_inertia: float  # kg m^2, about the spin axis
+    transverse_inertia: float  # kg m^2, about a diameter through the disk centre
+
+
+@dataclass(frozen=True)
+class Support:
+    """Linear support at a station (used by modal analysis, not by the landing model)."""
+
+    station: str
+    kyy: float = 0.0  # N/m
+    kzz: float = 0.0
+    kyz: float = 0.0  # cross-coupled: force in y per displacement in z
+    kzy: float = 0.0
+    cyy: float = 0.0  # N s/m
+    czz: float = 0.0
+    cyz: float = 0.0
+    czy: float = 0.0
+
+
+@dataclass(frozen=True)
+class ReductionSpec:
+    boundary_stations: tuple[str, ...]
+    boundary_rotations: bool = False
+    modes: int = 8
+
+
+@dataclass(frozen=True)
+class Rotor:
+    name: str
+    sections: tuple[ShaftSection, ...]
+    disks: tuple[Disk, ...]
+    stations: dict[str, float]
+    supports: tuple[Support, ...] = ()
+    reduction: ReductionSpec | None = None
+    mass_proportional_damping: float = 0.0  # 1/s (Rayleigh alpha)
+    stiffness_proportional_damping: float = 0.0  # s (Rayleigh beta)
+    max_speed_rpm: float = 10000.0
+    source: str | None = field(default=None, compare=False)
+
+    @property
+    def length(self) -> float:
+        return sum(s.length for s in self.sections)
+
+
+# ---------------------------------------------------------------------------------------------
+# validation helpers
+
+
+class _Table:
+    """A TOML table being read: tracks the dotted path and rejects unknown keys."""
+
+    def __init__(self, data, path: str):
+        if not isinstance(data, dict):
+            raise InputError(path, data, "must be a table")
+        self.data = data
+        self.path = path
+        self.used: set[str] = set()
+
+    def _field(self, key: str) -> str:
+        return f"{self.path}.{key}" if self.path else key
+
+    def has(self, key: str) -> bool:
+        return key in self.data
+
+    def raw(self, key: str, default=...):
+        self.used.add(key)
+        if key not in self.data:
+            if default is ...:
+                raise InputError(self._field(key), None, "missing required field")
+            return default
+        return self.data[key]
+
+    def number(self, key: str, default=..., *, positive=False, nonnegative=False, upper=None) -> float:
+        value = self.raw(key, default)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise InputError(self._field(key), value, "must be a finite number")
+        if positive and not value > 0:
+            raise InputError(self._field(key), value, "must be > 0")
+        if nonnegative and not value >= 0:
+            raise InputError(self._field(key), value, "must be >= 0")
+        if upper is not None and not value < upper:
+            raise InputError(self._field(key), value, f"must be < {upper}")
+        return float(value)
+
+    def integer(self, key: str, default=..., *, minimum=1) -> int:
+        value = self.raw(key, default)
+        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+            raise InputError(self._field(key), value, f"must be an integer >= {minimum}")
+        return value
+
+    def string(self, key: str, default=...) -> str:
+        value = self.raw(key, default)
+        if not isinstance(value, str) or not value:
+            raise InputError(self._field(key), value, "must be a non-empty string")
+        return value
+
+    def boolean(self, key: str, default=...) -> bool:
+        value = self.raw(key, default)
+        if not isinstance(value, bool):
+            raise InputError(self._field(key), value, "must be true or false")
+        return value
+
+    def table(self, key: str, default=...) -> "_Table":
+        return _Table(self.raw(key, default), self._field(key))
+
+    def array_of_tables(self, key: str, default=...) -> list["_Table"]:
+        value = self.raw(key, default)
+        if not isinstance(value, list):
+            raise InputError(self._field(key), value, "must be an array of tables ([[...]])")
+        return [_Table(v, f"{self._field(key)}[{i}]") for i, v in enumerate(value)]
+
+    def finish(self) -> None:
+        unknown = sorted(set(self.data) - self.used)
+        if unknown:
+            raise InputError(self._field(unknown[0]), self.data[unknown[0]],
+                             f"unknown field; allowed: {', '.join(sorted(self.used))}")
+
+
+def _material(name: str, t: _Table) -> Material:
+    e = t.number("youngs_modulus", positive=True)
+    rho = t.number("density", positive=True)
+    has_nu, has_g = t.has("poisson_ratio"), t.has("shear_modulus")
+    if not (has_nu or has_g):
+        raise InputError(f"{t.path}.poisson_ratio", None, "missing: give poisson_ratio or shear_modulus")
+    if has_nu:
+        nu = t.number("poisson_ratio")
+        if not -1.0 < nu < 0.5:
+            raise InputError(f"{t.path}.poisson_ratio", nu, "must lie in (-1, 0.5)")
+    if has_g:
+        g = t.number("shear_modulus", positive=True)
+        if not has_nu:
+            nu = e / (2.0 * g) - 1.0
+            if not -1.0 < nu < 0.5:
+                raise InputError(f"{t.path}.shear_modulus", g, "implies a Poisson ratio outside (-1, 0.5)")
+    else:
+        g = e / (2.0 * (1.0 + nu))
+    t.finish()
+    return Material(name, e, g, rho, nu)
+
+
+def rotor_from_dict(data: dict, *, source: str | None = None) -> Rotor:
+    """Build a :class:`Rotor` from the parsed top-level TOML dict (which holds ``rotor``)."""
+    try:
+        return _rotor_from_dict(data, source)
+    except InputError as err:
+        raise err.with_file(source) if source else err
+
+
+def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
+    if "rotor" not in data:
+        raise InputError("rotor", None, "missing required table [rotor]")
+    r = _Table(data["rotor"], "rotor")
+    name = r.string("name", "rotor")
+
+    mats_t = r.table("materials")
+    materials = {}
+    for key in mats_t.data:
+        materials[key] = _material(key, mats_t.table(key))
+    if not materials:
+        raise InputError("rotor.materials", {}, "define at least one material")
+
+    sections = []
+    for s in r.array_of_tables("sections"):
+        length = s.number("length", positive=True)
+        d_out = s.number("outer_diameter", positive=True)
+        d_in = s.number("inner_diameter", 0.0, nonnegative=True)
+        if d_in >= d_out:
+            raise InputError(f"{s.path}.inner_diameter", d_in, f"must be < outer_diameter ({d_out})")
+        mat_name = s.string("material")
+        if mat_name not in materials:
+            raise InputError(f"{s.path}.material", mat_name, f"unknown material; defined: {', '.join(materials)}")
+        n_el = s.integer("elements", 1)
+        s.finish()
+        sections.append(ShaftSection(length, d_out, d_in, materials[mat_name], n_el))
+    if not sections:
+        raise InputError("rotor.sections", [], "define at least one shaft section")
+    total = sum(s.length for s in sections)
+
+    def position(t: _Table, key: str) -> float:
+        x = t.number(key)
+        if not -1e-12 <= x <= total + 1e-12:
+            raise InputError(t._field(key), x, f"must lie on the rotor, 0 <= x <= {total:g} m")
+        return min(max(x, 0.0), total)
+
+    stations_t = r.table("stations", {})
+    stations = {key: position(stations_t, key) for key in stations_t.data}
+
+    disks = []
+    for d in r.array_of_tables("disks", []):
+        disk = Disk(
+            name=d.string("name", f"disk{len(disks) + 1}"),
+            position=position(d, "position"),
+            mass=d.number("mass", nonnegative=True),
+            polar_inertia=d.number("polar_inertia", nonnegative=True),
+            transverse_inertia=d.number("transverse_inertia", nonnegative=True),
+        )
+        d.finish()
+        disks.append(disk)
+
+    def station_name(t: _Table, key: str) -> str:
+        st = t.string(key)
+        if st not in stations:
+            raise InputError(t._field(key), st, f"unknown station; defined: {', '.join(stations) or 'none'}")
+        return st
+
+    supports = []
+    for s in r.array_of_tables("supports", []):
+        kw = {"station": station_name(s, "station")}
+        for key in ("kyy", "kzz", "cyy", "czz"):
+            kw[key] = s.number(key, 0.0, nonnegative=True)
+        for key in ("kyz", "kzy", "cyz", "czy"):
+            kw[key] = s.number(key, 0.0)
+        s.finish()
+        supports.append(Support(**kw))
+
+    reduction = None
+    if r.has("reduction"):
+        red = r.table("reduction")
+        names = red.raw("boundary_stations")
+        if not isinstance(names, list) or not names:
+            raise InputError(f"{red.path}.boundary_stations", names, "must be a non-empty list of station names")
+        for i, st in enumerate(names):
+            if st not in stations:
+                raise InputError(f"{red.path}.boundary_stations[{i}]", st,
+                                 f"unknown station; defined: {', '.join(stations) or 'none'}")
+        if len(set(names)) != len(names):
+            raise InputError(f"{red.path}.boundary_stations", names, "station names must be unique")
+        reduction = ReductionSpec(tuple(names), red.boolean("boundary_rotations", False),
+                                  red.integer("modes", 8, minimum=0))
+        red.finish()
+
+    damping = r.table("damping", {})
+    alpha = damping.number("mass_proportional", 0.0, nonnegative=True)
+    beta = damping.number("stiffness_proportional", 0.0, nonnegative=True)
+    damping.finish()
+    max_speed = r.number("max_speed_rpm", 10000.0, positive=True)
+    r.finish()
+    return Rotor(name, tuple(sections), tuple(disks), stations, tuple(supports), reduction,
+                 alpha, beta, max_speed, source)
+
+
+def load_rotor(path) -> Rotor:
+    """Read the ``[rotor]`` table of a rotor file or of a scenario file that contains one."""
+    path = Path(path)
+    try:
+        data = load_toml(path)
+    except InputError as err:
+        raise err.with_file(str(path)) from None
+    return rotor_from_dict(data, source=str(path))

@@ -1,0 +1,205 @@
+"""Tests of rotorlanding.whirl on synthetic orbits with known answers (fs = 10 kHz)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rotorlanding.whirl import WhirlResult, full_spectrum, whirl_analysis
+
+FS = 10_000.0
+C = 2e-4  # radial clearance [m]
+
+
+def _time(duration, t0=0.0, fs=FS):
+    return t0 + np.arange(int(round(duration * fs))) / fs
+
+
+def _drop_then_whirl(f_whirl, *, t_on=0.4, duration=1.5, t0=0.0, radius=C, noise=0.05,
+                     seed=0):
+    """Bounce (damped 200 Hz z oscillation about -c) until t_on, then a circular whirl of
+    ``radius`` starting at the bottom; ``f_whirl`` > 0 forward, < 0 backward; noise in units of c.
+    """
+    rng = np.random.default_rng(seed)
+    t = _time(duration, t0)
+    tr = t - t0
+    w = 1j * (-C + 0.5 * C * np.exp(-tr / 0.05) * np.cos(2 * np.pi * 200.0 * tr))
+    on = tr >= t_on
+    w[on] = radius * np.exp(1j * (2 * np.pi * f_whirl * (tr[on] - t_on) - np.pi / 2))
+    w += noise * C * (rng.standard_normal(len(t)) + 1j * rng.standard_normal(len(t)))
+    return t, w.real, w.imag
+
+
+# ------------------------------------------------------------------ full_spectrum
+def _peak(freq, amp):
+    k = int(np.argmax(amp))
+    return freq[k], amp[k]
+
+
+@pytest.mark.parametrize("sense", [+1, -1])
+def test_full_spectrum_circle_forward_and_backward(sense):
+    t = _time(1.0)  # 1 Hz bins: 65 Hz falls on a bin
+    w = 1e-4 * np.exp(1j * sense * 2 * np.pi * 65.0 * t)
+    freq, amp = full_spectrum(t, w.real, w.imag)
+    assert np.all(np.diff(freq) > 0) and freq[0] < 0 < freq[-1]
+    f_pk, a_pk = _peak(freq, amp)
+    df = freq[1] - freq[0]
+    assert abs(f_pk - sense * 65.0) <= df
+    assert a_pk == pytest.approx(1e-4, rel=0.02)
+    # the opposite sense holds essentially nothing
+    assert amp[np.argmin(np.abs(freq + sense * 65.0))] < 1e-3 * a_pk
+
+
+def test_full_spectrum_planar_oscillation_has_equal_peaks():
+    t = _time(1.0)
+    y = 1e-4 * np.cos(2 * np.pi * 65.0 * t)
+    freq, amp = full_spectrum(t, y, np.zeros_like(t))
+    a_pos = amp[np.argmin(np.abs(freq - 65.0))]
+    a_neg = amp[np.argmin(np.abs(freq + 65.0))]
+    assert a_pos == pytest.approx(0.5e-4, rel=0.02)
+    assert a_neg == pytest.approx(a_pos, rel=1e-6)
+    assert max(a_pos, a_neg) == pytest.approx(amp.max())
+
+
+def test_full_spectrum_rectangular_window_and_detrend():
+    t = _time(1.0)
+    w = 3e-4j + 1e-4 * np.exp(2j * np.pi * 65.0 * t)  # static offset + circle
+    freq, amp = full_spectrum(t, w.real, w.imag, window="boxcar")
+    assert _peak(freq, amp)[1] == pytest.approx(1e-4, rel=1e-6)
+    freq, amp = full_spectrum(t, w.real, w.imag, detrend=False)
+    assert amp[np.argmin(np.abs(freq))] == pytest.approx(3e-4, rel=1e-6)
+
+
+# ------------------------------------------------------------------ whirl_analysis
+def test_forward_whirl_after_bounces():
+    t, y, z = _drop_then_whirl(+65.0)
+    res = whirl_analysis(t, y, z, clearance=C)
+    assert res.direction == "forward"
+    assert res.frequency_hz == pytest.approx(65.0, abs=0.5)
+    assert res.onset_s == pytest.approx(0.4, abs=0.03)
+    assert res.amplitude_m == pytest.approx(C, rel=0.1)
+
+
+def test_backward_whirl_after_bounces():
+    t, y, z = _drop_then_whirl(-49.0, seed=1)
+    res = whirl_analysis(t, y, z, clearance=C, spin_hz=116.7)
+    assert res.direction == "backward"
+    assert res.frequency_hz == pytest.approx(49.0, abs=0.5)
+    assert res.onset_s == pytest.approx(0.4, abs=0.03)
+
+
+def test_whirl_onset_reported_in_the_time_base_of_t():
+    t, y, z = _drop_then_whirl(+65.0, t0=12.3, seed=2)
+    res = whirl_analysis(t, y, z, clearance=C)
+    assert res.direction == "forward"
+    assert res.onset_s == pytest.approx(12.7, abs=0.03)
+    # t_start is in the same time base; starting after the onset moves it
+    late = whirl_analysis(t, y, z, clearance=C, t_start=13.0)
+    assert late.direction == "forward"
+    assert late.onset_s == pytest.approx(13.0, abs=0.03)
+
+
+def test_bounces_then_rest_with_unbalance_response_is_not_whirl():
+    rng = np.random.default_rng(3)
+    t = _time(1.5)
+    spin = 116.7
+    # bouncing: decaying 200 Hz z oscillation plus a few decaying lateral kicks
+    w = 1j * (-C + 0.6 * C * np.exp(-t / 0.08) * np.cos(2 * np.pi * 200.0 * t))
+    w += 0.3 * C * np.exp(-t / 0.03) * np.sin(2 * np.pi * 90.0 * t)
+    w += 0.05 * C * np.exp(2j * np.pi * spin * t)  # synchronous unbalance response (forward)
+    w += 0.05 * C * (rng.standard_normal(len(t)) + 1j * rng.standard_normal(len(t)))
+    res = whirl_analysis(t, w.real, w.imag, clearance=C, spin_hz=spin)
+    assert res == WhirlResult("none", None, None, 0.0)
+    assert res.to_dict() == {"direction": "none", "frequency_hz": None, "onset_s": None,
+                             "amplitude_m": 0.0}
+
+
+def test_rotor_at_rest_is_not_whirl():
+    t = _time(1.0)
+    res = whirl_analysis(t, np.zeros_like(t), np.full_like(t, -C), clearance=C)
+    assert res.direction == "none" and res.amplitude_m == 0.0
+
+
+def test_large_synchronous_response_is_skipped_only_when_spin_given():
+    t = _time(1.0)
+    spin = np.linspace(120.0, 110.0, len(t))  # decelerating rotor
+    phase = 2 * np.pi * np.cumsum(spin) / FS
+    w = 0.6 * C * np.exp(1j * phase)
+    assert whirl_analysis(t, w.real, w.imag, clearance=C).direction == "forward"
+    assert whirl_analysis(t, w.real, w.imag, clearance=C, spin_hz=spin).direction == "none"
+    # a real whirl under a strong synchronous response is still found
+    w2 = w + C * np.exp(-2j * np.pi * 40.0 * t)
+    res = whirl_analysis(t, w2.real, w2.imag, clearance=C, spin_hz=spin)
+    assert res.direction == "backward" and res.frequency_hz == pytest.approx(40.0, abs=0.5)
+
+
+def test_short_burst_is_not_whirl():
+    t = _time(1.0)
+    w = np.full(len(t), -1j * C)
+    burst = (t >= 0.5) & (t < 0.55)
+    w[burst] = C * np.exp(1j * (2 * np.pi * 65.0 * (t[burst] - 0.5) - np.pi / 2))
+    assert whirl_analysis(t, w.real, w.imag, clearance=C).direction == "none"
+    # the same motion lasting 0.2 s is whirl
+    longer = (t >= 0.5) & (t < 0.7)
+    w[longer] = C * np.exp(1j * (2 * np.pi * 65.0 * (t[longer] - 0.5) - np.pi / 2))
+    res = whirl_analysis(t, w.real, w.imag, clearance=C)
+    assert res.direction == "forward" and res.onset_s == pytest.approx(0.5, abs=0.03)
+
+
+def test_sustained_planar_rattle_is_not_whirl():
+    t = _time(1.0)
+    z = -C + 0.8 * C * np.cos(2 * np.pi * 65.0 * t)
+    assert whirl_analysis(t, np.zeros_like(t), z, clearance=C).direction == "none"
+
+
+def test_result_to_dict_plain_types():
+    t, y, z = _drop_then_whirl(+65.0)
+    d = whirl_analysis(t, y, z, clearance=C).to_dict()
+    assert set(d) == {"direction", "frequency_hz", "onset_s", "amplitude_m"}
+    assert d["direction"] == "forward"
+    assert all(type(d[k]) is float for k in ("frequency_hz", "onset_s", "amplitude_m"))
+
+
+# ------------------------------------------------------------------ bad inputs
+def _ok():
+    t = _time(0.5)
+    return t, np.zeros_like(t), np.zeros_like(t)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"clearance": 0.0}, "clearance"),
+    ({"clearance": -1e-4}, "clearance"),
+    ({"clearance": float("nan")}, "clearance"),
+    ({"window_s": 0.0}, "window_s"),
+    ({"window_s": 0.6}, "window_s"),
+    ({"window_s": 0.0005}, "window_s"),
+    ({"step_s": 0.0}, "step_s"),
+    ({"step_s": 0.2}, "step_s"),
+    ({"amplitude_threshold": 0.0}, "amplitude_threshold"),
+    ({"min_duration_s": -0.1}, "min_duration_s"),
+    ({"spin_hz": -5.0}, "spin_hz"),
+    ({"spin_hz": np.ones(3)}, "spin_hz"),
+    ({"t_start": 7.0}, "t_start"),
+])
+def test_bad_parameters_raise_value_error_naming_them(kwargs, name):
+    t, y, z = _ok()
+    args = {"clearance": C, **kwargs}
+    with pytest.raises(ValueError, match=name) as exc:
+        whirl_analysis(t, y, z, **args)
+    assert repr(next(iter(kwargs.values())))[:3] in str(exc.value) or name == "spin_hz"
+
+
+def test_bad_series_raise_value_error():
+    t, y, z = _ok()
+    t_bad = t.copy()
+    t_bad[10] += 0.3 / FS
+    with pytest.raises(ValueError, match=r"t = .*uniformly sampled"):
+        full_spectrum(t_bad, y, z)
+    with pytest.raises(ValueError, match="same length"):
+        full_spectrum(t, y[:-1], z)
+    with pytest.raises(ValueError, match="at least 8 samples"):
+        full_spectrum(t[:5], y[:5], z[:5])
+    with pytest.raises(ValueError, match=r"t = .*uniformly sampled"):
+        whirl_analysis(t[::-1], y, z, clearance=C)
+    with pytest.raises(ValueError, match="window"):
+        full_spectrum(t, y, z, window="no-such-window")
