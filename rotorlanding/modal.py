@@ -101,22 +101,19 @@ def modal_analysis(system: LinearRotor, speed_rpm: float) -> ModalResult:
     rb = rigid_body_basis(system)
     modes, rigid = [], []
     used = np.zeros(lam.size, dtype=bool)
-    # zero eigenvalues come as (near-)real; positive-imaginary ones represent each oscillatory pair
+    # each oscillatory pair once (positive imaginary part); zero and overdamped real eigenvalues
+    # carry no whirl frequency and are not reported
     for k in np.argsort(np.abs(lam)):
         lk = lam[k]
-        phi = vec[:n, k]
-        small = abs(lk) < 1e-7 * scale
-        if not small and lk.imag <= 1e-9 * scale:
-            continue  # conjugate partner or overdamped real mode
-        if used[k]:
+        if lk.imag <= 1e-9 * scale or used[k]:
             continue
         used[k] = True
+        phi = vec[:n, k]
         full = system.T @ phi
+        is_rigid = False
         if rb.shape[1]:
             coeff = rb.T @ (system.M @ phi)
-            is_rigid = small or np.vdot(coeff, coeff).real > RIGID_SHARE * np.vdot(phi, system.M @ phi).real
-        else:
-            is_rigid = small
+            is_rigid = np.vdot(coeff, coeff).real > RIGID_SHARE * np.vdot(phi, system.M @ phi).real
         label, share = whirl_label(full, symmetric)
         mode = Mode(complex(lk), abs(lk.imag) / (2 * np.pi),
                     float(-lk.real / abs(lk)) if abs(lk) > 0 else 0.0,

@@ -1,0 +1,106 @@
+"""Craig-Bampton reduction: frequencies, rigid-body modes, static response at the boundary."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.errors import InputError
+from rotorlanding.modal import modal_analysis, reduction_report, rigid_body_basis
+from rotorlanding.reduction import craig_bampton, full_model, reduce_rotor
+from rotorlanding.rotor import load_rotor
+from rotorlanding.timoshenko import assemble
+
+RIG = Path(__file__).resolve().parents[1] / "scenarios" / "rig_rotor.toml"
+
+
+@pytest.fixture(scope="module")
+def rig_fe():
+    return assemble(load_rotor(RIG))
+
+
+def test_rig_reduction_frequencies_within_half_percent(rig_fe):
+    """Modes below 2 x the max spin frequency (333 Hz) within 0.5 % with the rig's 12 modes."""
+    assert rig_fe.rotor.reduction.modes == 12
+    red = reduce_rotor(rig_fe)
+    f_limit = 2 * 10000 / 60
+    for supported in (True, False):
+        full, r = full_model(rig_fe), red
+        if supported:
+            full, r = full.with_supports(), r.with_supports()
+        rows = reduction_report(full, r, [0.0, 10000.0], f_limit)
+        assert len(rows) >= 4 * (1 if not supported else 1)
+        assert {row["speed_rpm"] for row in rows} == {0.0, 10000.0}
+        worst = max(abs(row["relative_error"]) for row in rows)
+        assert worst < 5e-3, rows
+        # CB is a Rayleigh-Ritz projection: reduced frequencies are never below the full ones at 0 rpm
+        assert all(row["reduced_hz"] >= row["full_hz"] * (1 - 1e-9) for row in rows if row["speed_rpm"] == 0.0)
+
+
+def test_error_falls_with_more_modes(rig_fe):
+    full = full_model(rig_fe).with_supports()
+    worst = []
+    for n in (4, 8, 12):
+        red = craig_bampton(rig_fe, ["NDE_sleeve", "DE_sleeve"], n).with_supports()
+        rows = reduction_report(full, red, [10000.0], 333.0)
+        worst.append(max(abs(r["relative_error"]) for r in rows))
+    assert worst[0] > worst[1] > worst[2]
+
+
+def test_free_rotor_keeps_four_rigid_body_modes(rig_fe):
+    full = full_model(rig_fe)
+    red = reduce_rotor(rig_fe)
+    assert rigid_body_basis(full).shape[1] == 4
+    assert rigid_body_basis(red).shape[1] == 4
+    # rigid-body modes are excluded from the reported modes; at speed the free rigid rotor's
+    # nutation (forward, ~ Ip/Id Omega) shows up among the rigid modes, not the elastic ones
+    res = modal_analysis(red, 7000.0)
+    assert all(m.frequency_hz > 50 for m in res.modes)
+    nut = [m for m in res.rigid_modes if m.frequency_hz > 0.01]
+    assert len(nut) == 1 and nut[0].whirl == "forward"
+    # rigid-rotor closed form: nutation frequency = Ip Omega / Id (Id about the centre of mass);
+    # the flexible rotor's mode differs by its small elastic part
+    x = rig_fe.nodes
+    u, t = np.zeros(rig_fe.ndof), np.zeros(rig_fe.ndof)
+    u[0::4] = 1.0
+    t[0::4], t[3::4] = x, 1.0
+    xc = (u @ rig_fe.M @ t) / (u @ rig_fe.M @ u)
+    t[0::4] = x - xc  # rigid tilt about the centre of mass in the x-y plane
+    id_cg = t @ rig_fe.M @ t
+    expected = rig_fe.polar_inertia * 7000 / 60 / id_cg
+    assert nut[0].frequency_hz == pytest.approx(expected, rel=2e-3)
+
+
+def test_static_gravity_deflection_matches_at_boundary(rig_fe):
+    full = full_model(rig_fe).with_supports()
+    for n_modes in (0, 3, 12):
+        red = craig_bampton(rig_fe, ["NDE_sleeve", "DE_sleeve"], n_modes).with_supports()
+        u_full = np.linalg.solve(full.K, full.gravity_load())
+        u_red = np.linalg.solve(red.K, red.gravity_load())
+        for st in ("NDE_sleeve", "DE_sleeve"):
+            for d in ("y", "z"):
+                uf = u_full[rig_fe.dof(st, d)]
+                ur = u_red[red.index(st, d)]
+                assert ur == pytest.approx(uf, rel=1e-9, abs=1e-15)
+        # sanity: the rotor sags (gravity -z) by weight / support stiffness order of magnitude
+        sag = u_full[rig_fe.dof("DE_sleeve", "z")]
+        assert -1e-4 < sag < -1e-7
+
+
+def test_reduced_total_mass_and_physical_boundary(rig_fe):
+    red = reduce_rotor(rig_fe)
+    # a rigid translation in y expressed in reduced coordinates: boundary y = 1, modes 0
+    q = np.zeros(red.n)
+    q[red.index("NDE_sleeve", "y")] = 1.0
+    q[red.index("DE_sleeve", "y")] = 1.0
+    np.testing.assert_allclose((red.T @ q)[0::4], 1.0, atol=1e-9)
+    assert q @ red.M @ q == pytest.approx(rig_fe.mass, rel=1e-9)
+    np.testing.assert_allclose(red.G, -red.G.T, atol=1e-12)
+
+
+def test_unrestrained_boundary_is_a_clear_error(rig_fe):
+    with pytest.raises(InputError, match="rigid-body"):
+        craig_bampton(rig_fe, ["DE_sleeve"], 4)
+    # one station with its rotations restrains the rigid motion
+    red = craig_bampton(rig_fe, ["DE_sleeve"], 12, rotations=True)
+    assert red.n == 16
