@@ -88,6 +88,19 @@ def test_backward_whirl_after_bounces():
     assert res.onset_s == pytest.approx(0.4, abs=0.03)
 
 
+@pytest.mark.parametrize("f_whirl, window_s", [(60.0, 0.05), (-150.0, 0.1)])
+def test_growing_whirl_onset_is_the_threshold_crossing(f_whirl, window_s):
+    # radius grows exponentially (tau 30 ms) from 0.05 c at 0.4 s and saturates at c:
+    # it reaches the threshold 0.3 c at 0.4 + 0.03 ln 6 = 0.4538 s
+    t = _time(1.5)
+    r = np.where(t < 0.4, 0.0, np.minimum(C, 0.05 * C * np.exp((t - 0.4) / 0.03)))
+    w = np.where(t < 0.4, -1j * C, r * np.exp(2j * np.pi * f_whirl * t))
+    res = whirl_analysis(t, w.real, w.imag, clearance=C, window_s=window_s)
+    assert res.direction == ("forward" if f_whirl > 0 else "backward")
+    assert res.frequency_hz == pytest.approx(abs(f_whirl), abs=0.5)
+    assert res.onset_s == pytest.approx(0.4 + 0.03 * np.log(6.0), abs=0.005)
+
+
 def test_whirl_onset_reported_in_the_time_base_of_t():
     t, y, z = _drop_then_whirl(+65.0, t0=12.3, seed=2)
     res = whirl_analysis(t, y, z, clearance=C)
@@ -131,6 +144,14 @@ def test_large_synchronous_response_is_skipped_only_when_spin_given():
     w2 = w + C * np.exp(-2j * np.pi * 40.0 * t)
     res = whirl_analysis(t, w2.real, w2.imag, clearance=C, spin_hz=spin)
     assert res.direction == "backward" and res.frequency_hz == pytest.approx(40.0, abs=0.5)
+
+
+def test_lowest_detectable_whirl_frequency_is_two_over_window():
+    t = _time(1.5)
+    w = C * np.exp(-2j * np.pi * 20.0 * t)  # 20 Hz backward whirl
+    assert whirl_analysis(t, w.real, w.imag, clearance=C).direction == "none"  # 20 < 2/0.05
+    res = whirl_analysis(t, w.real, w.imag, clearance=C, window_s=0.2)
+    assert res.direction == "backward" and res.frequency_hz == pytest.approx(20.0, abs=0.5)
 
 
 def test_short_burst_is_not_whirl():
