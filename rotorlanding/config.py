@@ -9,6 +9,7 @@ shares one rig parameter file.
 from __future__ import annotations
 
 import copy
+import math
 import tomllib
 from pathlib import Path
 
@@ -75,3 +76,73 @@ def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True) -
     if not isinstance(node, dict) or (must_exist and parts[-1] not in node):
         raise InputError(dotted_key, value, "no such key in the input")
     node[parts[-1]] = value
+
+
+class Table:
+    """A TOML table being read: tracks the dotted path and rejects unknown keys."""
+
+    def __init__(self, data, path: str):
+        if not isinstance(data, dict):
+            raise InputError(path, data, "must be a table")
+        self.data = data
+        self.path = path
+        self.used: set[str] = set()
+
+    def _field(self, key: str) -> str:
+        return f"{self.path}.{key}" if self.path else key
+
+    def has(self, key: str) -> bool:
+        return key in self.data
+
+    def raw(self, key: str, default=...):
+        self.used.add(key)
+        if key not in self.data:
+            if default is ...:
+                raise InputError(self._field(key), None, "missing required field")
+            return default
+        return self.data[key]
+
+    def number(self, key: str, default=..., *, positive=False, nonnegative=False, upper=None) -> float:
+        value = self.raw(key, default)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise InputError(self._field(key), value, "must be a finite number")
+        if positive and not value > 0:
+            raise InputError(self._field(key), value, "must be > 0")
+        if nonnegative and not value >= 0:
+            raise InputError(self._field(key), value, "must be >= 0")
+        if upper is not None and not value < upper:
+            raise InputError(self._field(key), value, f"must be < {upper}")
+        return float(value)
+
+    def integer(self, key: str, default=..., *, minimum=1) -> int:
+        value = self.raw(key, default)
+        if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+            raise InputError(self._field(key), value, f"must be an integer >= {minimum}")
+        return value
+
+    def string(self, key: str, default=...) -> str:
+        value = self.raw(key, default)
+        if not isinstance(value, str) or not value:
+            raise InputError(self._field(key), value, "must be a non-empty string")
+        return value
+
+    def boolean(self, key: str, default=...) -> bool:
+        value = self.raw(key, default)
+        if not isinstance(value, bool):
+            raise InputError(self._field(key), value, "must be true or false")
+        return value
+
+    def table(self, key: str, default=...) -> "Table":
+        return Table(self.raw(key, default), self._field(key))
+
+    def array_of_tables(self, key: str, default=...) -> list["Table"]:
+        value = self.raw(key, default)
+        if not isinstance(value, list):
+            raise InputError(self._field(key), value, "must be an array of tables ([[...]])")
+        return [Table(v, f"{self._field(key)}[{i}]") for i, v in enumerate(value)]
+
+    def finish(self) -> None:
+        unknown = sorted(set(self.data) - self.used)
+        if unknown:
+            raise InputError(self._field(unknown[0]), self.data[unknown[0]],
+                             f"unknown field; allowed: {', '.join(sorted(self.used))}")
