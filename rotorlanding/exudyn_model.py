@@ -1,0 +1,197 @@
+"""The landing model in Exudyn: build the ``mbs`` from a LandingSpec, solve, collect states.
+
+Objects (Exudyn 1.13.6, see shared notes):
+- reduced rotor: one ``ObjectGenericODE2`` over [station NodePoint2D..., modal NodeGenericODE2,
+  spin/axial NodeGenericODE2 (theta, x_ax)] with the Craig-Bampton M, K, C, the spin inertia and
+  rotor mass, the reduced gravity load, and a user force (gyroscopics, AMB hold, unbalance,
+  windage, drive, axial model) — :func:`rotorlanding.forces.rotor_forces`;
+- inner race: ``NodeRigidBody2D`` + ``ObjectRigidBody2D`` (y, z, spin angle);
+- outer race: ``NodePoint2D`` + ``ObjectMassPoint2D``;
+- per catcher bearing one zero-mass ``ObjectGenericODE2`` connector whose user force applies the
+  paper's laws (contact, axial rub, balls, drag, ribbon, Coulomb) — :func:`rotorlanding.forces.bearing_forces`.
+
+Exudyn's planar (X, Y) is our (y, z). Nodes are added in the LandingSpec coordinate order, so the
+system's ODE2 vector is the spec's q.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .forces import bearing_forces, bearing_layout, rotor_forces
+from .landing import LandingSpec
+
+
+@dataclass
+class SolverSettings:
+    """All solver settings in one place (from the scenario's [solver] table)."""
+
+    step: float
+    spectral_radius: float
+    modified_newton: bool
+    output_period: float
+    newton_relative_tolerance: float = 1e-8
+    newton_absolute_tolerance: float = 1e-10
+
+    @classmethod
+    def from_spec(cls, spec: LandingSpec) -> "SolverSettings":
+        s = spec.scenario.solver
+        return cls(s.step, s.spectral_radius, s.modified_newton, s.output_period)
+
+    def apply(self, exu, t_start: float, t_end: float):
+        ss = exu.SimulationSettings()
+        ti = ss.timeIntegration
+        ti.startTime = t_start
+        ti.endTime = t_end
+        ti.numberOfSteps = max(1, int(round((t_end - t_start) / self.step)))
+        ti.generalizedAlpha.spectralRadius = self.spectral_radius
+        ti.newton.useModifiedNewton = self.modified_newton
+        ti.newton.relativeTolerance = self.newton_relative_tolerance
+        ti.newton.absoluteTolerance = self.newton_absolute_tolerance
+        ti.verboseMode = 0
+        ss.solutionSettings.writeSolutionToFile = False
+        ss.solutionSettings.sensorsWritePeriod = self.output_period
+        ss.displayComputationTime = False
+        ss.displayStatistics = False
+        return ss
+
+
+@dataclass
+class ExudynModel:
+    SC: object
+    mbs: object
+    spec: LandingSpec
+    node_slices: list  # (node number, slice into q)
+    sensors: list  # (sensor pos, sensor vel, slice)
+
+
+def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
+    import exudyn as exu
+    from exudyn.itemInterface import (NodeGenericODE2, NodePoint2D, NodeRigidBody2D, ObjectGenericODE2,
+                                      ObjectMassPoint2D, ObjectRigidBody2D, SensorNode)
+
+    if q0 is None or v0 is None:
+        q0, v0 = spec.initial_state()
+    q0 = np.asarray(q0, float)
+    v0 = np.asarray(v0, float)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    nodes = []  # (node number, slice)
+
+    def point(i):
+        nd = mbs.AddNode(NodePoint2D(referenceCoordinates=[0.0, 0.0], initialCoordinates=q0[i:i + 2].tolist(),
+                                     initialVelocities=v0[i:i + 2].tolist()))
+        nodes.append((nd, slice(i, i + 2)))
+        return nd
+
+    def generic(i, n):
+        nd = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=n, referenceCoordinates=[0.0] * n,
+                                         initialCoordinates=q0[i:i + n].tolist(),
+                                         initialCoordinates_t=v0[i:i + n].tolist()))
+        nodes.append((nd, slice(i, i + n)))
+        return nd
+
+    station_nodes = [point(2 * k) for k in range(len(spec.stations))]
+    nb2 = 2 * len(spec.stations)
+    n_modes = spec.n_lat - nb2
+    modal_node = generic(nb2, n_modes) if n_modes > 0 else None
+    spin_node = generic(spec.i_theta, 2)
+    lateral_nodes = station_nodes + ([modal_node] if modal_node is not None else [])
+
+    n_rot = spec.n_lat + 2
+    M = np.zeros((n_rot, n_rot))
+    K = np.zeros((n_rot, n_rot))
+    C = np.zeros((n_rot, n_rot))
+    M[: spec.n_lat, : spec.n_lat] = spec.M
+    K[: spec.n_lat, : spec.n_lat] = spec.K
+    C[: spec.n_lat, : spec.n_lat] = spec.C
+    M[spec.i_theta, spec.i_theta] = spec.rotor_polar_inertia
+    M[spec.i_axial, spec.i_axial] = spec.rotor_mass
+    fvec = np.zeros(n_rot)
+    fvec[: spec.n_lat] = spec.f_gravity
+    frot = rotor_forces(spec)
+
+    def rotor_uf(mbs_, t, item, q, q_t):
+        return frot(t, q, q_t)
+
+    mbs.AddObject(ObjectGenericODE2(nodeNumbers=lateral_nodes + [spin_node], massMatrix=M, stiffnessMatrix=K,
+                                    dampingMatrix=C, forceVector=fvec.tolist(), forceUserFunction=rotor_uf))
+
+    for b in spec.bearings:
+        p = b.params
+        i = b.i_race
+        race = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0],
+                                           initialCoordinates=q0[i:i + 3].tolist(),
+                                           initialVelocities=v0[i:i + 3].tolist()))
+        nodes.append((race, slice(i, i + 3)))
+        mbs.AddObject(ObjectRigidBody2D(physicsMass=p.inner_race_mass, physicsInertia=p.inner_race_inertia,
+                                        nodeNumber=race))
+        outer = point(i + 3)
+        mbs.AddObject(ObjectMassPoint2D(physicsMass=p.outer_race_mass, nodeNumber=outer))
+        lay = bearing_layout(spec, b)
+        if lay["full_lateral"]:
+            lat = lateral_nodes
+        else:
+            lat = [station_nodes[spec.stations.index(b.station)]]
+        fb = bearing_forces(spec, b)
+
+        def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
+            return fb(t, q, q_t)
+
+        n = lay["n"]
+        mbs.AddObject(ObjectGenericODE2(nodeNumbers=lat + [spin_node, race, outer], massMatrix=np.zeros((n, n)),
+                                        stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
+                                        forceVector=[0.0] * n, forceUserFunction=bearing_uf))
+
+    import exudyn as exu  # noqa: F811 (output types)
+
+    sensors = []
+    for nd, sl in nodes:
+        sp = mbs.AddSensor(SensorNode(nodeNumber=nd, storeInternal=True,
+                                      outputVariableType=exu.OutputVariableType.Coordinates))
+        sv = mbs.AddSensor(SensorNode(nodeNumber=nd, storeInternal=True,
+                                      outputVariableType=exu.OutputVariableType.Coordinates_t))
+        sensors.append((sp, sv, sl))
+    mbs.Assemble()
+    return ExudynModel(SC, mbs, spec, nodes, sensors)
+
+
+def collect(model: ExudynModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Stored sensor data as (t, q[t, n], v[t, n]) in spec coordinate order."""
+    mbs = model.mbs
+    t = None
+    q = v = None
+    for sp, sv, sl in model.sensors:
+        dp = mbs.GetSensorStoredData(sp)
+        dv = mbs.GetSensorStoredData(sv)
+        if t is None:
+            t = dp[:, 0]
+            q = np.zeros((len(t), model.spec.n))
+            v = np.zeros((len(t), model.spec.n))
+        k = sl.stop - sl.start
+        q[:, sl] = dp[: len(t), 1: 1 + k]
+        v[:, sl] = dv[: len(t), 1: 1 + k]
+    return t, q, v
+
+
+def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSettings):
+    """Run the implicit solver; return (ok, message, stats)."""
+    import exudyn as exu
+
+    ss = settings.apply(exu, t_start, t_end)
+    wall0 = time.perf_counter()
+    ok, msg = True, ""
+    try:
+        res = exu.SolveDynamic(model.mbs, ss)
+        if res is False:
+            ok, msg = False, "Exudyn solver did not converge"
+    except Exception as exc:  # Exudyn raises RuntimeError/ValueError on divergence
+        ok, msg = False, f"{type(exc).__name__}: {str(exc).strip().splitlines()[-1] if str(exc).strip() else ''}"
+    wall = time.perf_counter() - wall0
+    it = model.mbs.sys["dynamicSolver"].it
+    stats = {"wall_s": wall, "steps": int(it.currentStepIndex), "newton_iterations": int(it.newtonStepsCount),
+             "jacobians": int(it.newtonJacobiCount), "t_reached": float(it.currentTime)}
+    return ok, msg, stats

@@ -1,0 +1,243 @@
+"""Post-processing of a landing run: forces, powers, energy balance, whirl, summary.
+
+The laws are re-evaluated on the stored states (the same ``user_forces`` functions the solver
+used), so every force and every dissipated power is available as a time series without
+side effects in the solver's user functions. With states stored at every time step
+(``solver.output_period = solver.step``) the energy integrals are accurate to the integrator.
+
+Energy bookkeeping (all in J)::
+
+    E_kin = 1/2 q_lat'^T M q_lat' + 1/2 I_p Omega^2 + 1/2 m_r x'^2 + sum_b (1/2 m_i |r_i'|^2 + 1/2 I_i phi'^2 + 1/2 m_o |r_o'|^2)
+    E_pot = 1/2 q_lat^T K q_lat - f_g^T q_lat + sum_b g (m_i z_i + m_o z_o)
+            + Hertz k delta^(e+1)/(e+1) + balls (k_b1 r^2/2 + k_b2 r^3/3) + ribbon k |r_o|^2/2 + V_ax(x)
+    dissipated (>= 0, per mechanism): radial friction, contact damping, axial rub, ball damping,
+            ball drag, ribbon damping, ribbon cross-coupling, outer-race Coulomb, windage, axial
+            damping, rotor damping, race damping
+    input work: AMB forces before the drop, thrust, drive torque, unbalance force
+    residual = Delta(E_kin + E_pot) + sum(dissipated) - sum(input)
+
+The residual measures numerical energy error (time integration, sampling); the energy test
+asserts it is < 1 % of the dissipated energy.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from user_forces.axial import axial_force
+from user_forces.axial_rub import axial_rub
+from user_forces.ball_bearing import ball_force, harris_palmgren_torque
+from user_forces.radial_contact import radial_contact
+from user_forces.ribbon import outer_race_friction, ribbon_force
+from user_forces.spin import windage_torque
+
+from .forces import OMEGA_REG_HP
+from .landing import G_ACC, LandingSpec
+from .whirl import whirl_analysis
+
+MECHANISMS = ("radial_friction", "contact_damping", "axial_rub", "ball_damping", "ball_drag", "ribbon_damping",
+              "ribbon_cross_coupling", "outer_race_coulomb", "windage", "axial_damping", "rotor_damping",
+              "race_damping")
+INPUTS = ("amb", "thrust", "drive", "unbalance")
+
+
+def axial_potential(x: np.ndarray, a) -> np.ndarray:
+    """Elastic potential of the piecewise axial law (eqs 4-5), V(x) with -dV/dx = F_ax(x, 0)."""
+    k1 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_ws)
+    k2 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_h)
+    s = np.maximum(np.abs(x) - a.cl_ax, 0.0)
+    s1 = np.minimum(s, a.delta_m)
+    s2 = np.maximum(s - a.delta_m, 0.0)
+    return 0.5 * k1 * s1**2 + k1 * a.delta_m * s2 + 0.5 * k2 * s2**2
+
+
+def _trapz_cum(y: np.ndarray, t: np.ndarray) -> np.ndarray:
+    out = np.zeros_like(y)
+    out[1:] = np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(t))
+    return out
+
+
+def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
+    """Time series of forces, torques, powers and energies (SI), keyed by name."""
+    sc = spec.scenario
+    eff = sc.effects
+    c = sc.contact
+    a = sc.axial
+    nt = len(t)
+    n_lat = spec.n_lat
+    omega = v[:, spec.i_theta]
+    x, xd = q[:, spec.i_axial], v[:, spec.i_axial]
+    out: dict[str, np.ndarray] = {}
+    power = {k: np.zeros(nt) for k in MECHANISMS}
+    inp = {k: np.zeros(nt) for k in INPUTS}
+    f_ax_el = np.array([axial_force(xi, 0.0, a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax) for xi in x])
+    f_ax = np.array([axial_force(xi, vi, a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax) for xi, vi in zip(x, xd)])
+    out["axial_force_n"] = f_ax
+    power["axial_damping"] = -(f_ax - f_ax_el) * xd
+    epot = np.zeros(nt)
+    ekin = np.zeros(nt)
+    # rotor
+    ql, vl = q[:, :n_lat], v[:, :n_lat]
+    ekin += 0.5 * np.einsum("ti,ij,tj->t", vl, spec.M, vl) + 0.5 * spec.rotor_polar_inertia * omega**2 \
+        + 0.5 * spec.rotor_mass * xd**2
+    epot += 0.5 * np.einsum("ti,ij,tj->t", ql, spec.K, ql) - ql @ spec.f_gravity + axial_potential(x, a)
+    power["rotor_damping"] = np.einsum("ti,ij,tj->t", vl, spec.C, vl)
+    if eff["windage"]:
+        tw = np.array([windage_torque(w, sc.spin.c_w1, sc.spin.c_w2) for w in omega])
+        power["windage"] = -tw * omega
+    if sc.spin.drive == "constant":
+        inp["drive"] = sc.spin.drive_gain * (sc.omega0 - omega) * omega
+    amb_on = (t < sc.amb.t_drop) | (not sc.amb.drop_radial)
+    for iy, iz in spec.amb_rows:
+        for i in (iy, iz):
+            f = -spec.f_gravity[i] - sc.amb.stiffness * q[:, i] - sc.amb.damping * v[:, i]
+            inp["amb"] += np.where(amb_on, f * v[:, i], 0.0)
+    thrust = np.array([spec.thrust(ti) for ti in t])
+    inp["thrust"] = thrust * xd
+    ax_on = (t < sc.amb.t_drop) | (not sc.amb.drop_axial)
+    inp["amb"] += np.where(ax_on, (-thrust - sc.amb.axial_stiffness * x - sc.amb.axial_damping * xd) * xd, 0.0)
+    if spec.unbalance_rows is not None:
+        ry, rz = spec.unbalance_rows
+        ang = q[:, spec.i_theta] + math.radians(sc.unbalance.phase_deg)
+        fu = sc.unbalance.magnitude * omega**2
+        inp["unbalance"] = fu * (np.cos(ang) * (vl @ ry) + np.sin(ang) * (vl @ rz))
+
+    for b in spec.bearings:
+        p = b.params
+        pre = b.name + "_"
+        s, r = b.i_station, b.i_race
+        o = b.i_outer
+        cols = {k: np.zeros(nt) for k in ("contact_force_y_n", "contact_force_z_n", "normal_force_n", "penetration_m",
+                                          "slip_velocity_m_s", "rub_force_y_n", "rub_force_z_n", "ball_force_y_n",
+                                          "ball_force_z_n", "drag_torque_nm", "ribbon_force_y_n", "ribbon_force_z_n")}
+        kv = c.k_visc if eff["contact_damping"] else 0.0
+        mu = c.mu_rad if eff["radial_friction"] else 0.0
+        eta = p.eta if eff["ribbon_cross_coupling"] else 0.0
+        rub = p.axial_face and eff["axial_rub"]
+        for k in range(nt):
+            qk, vk = q[k], v[k]
+            dy, dz = qk[s] - qk[r], qk[s + 1] - qk[r + 1]
+            dvy, dvz = vk[s] - vk[r], vk[s + 1] - vk[r + 1]
+            wi = vk[r + 2]
+            fy, fz, _, _, fn, delta, vs, pf = radial_contact(dy, dz, dvy, dvz, omega[k], wi, p.clearance, c.k_hertz,
+                                                             c.exponent, kv, mu, c.v_reg, p.sleeve_radius,
+                                                             p.race_radius)
+            cols["contact_force_y_n"][k], cols["contact_force_z_n"][k] = fy, fz
+            cols["normal_force_n"][k], cols["slip_velocity_m_s"][k] = fn, vs
+            if delta > 0:
+                cols["penetration_m"][k] = delta
+                dist = math.hypot(dy, dz)
+                ddot = (dy * dvy + dz * dvz) / dist
+                el = c.k_hertz * delta**c.exponent
+                power["contact_damping"][k] += (fn - el) * ddot
+                epot[k] += c.k_hertz * delta ** (c.exponent + 1) / (c.exponent + 1)
+            power["radial_friction"][k] += pf
+            n_ax = abs(f_ax[k]) if p.axial_face else 0.0
+            if rub and n_ax > 0:
+                al = float(b.tilt_alpha @ qk[:n_lat])
+                be = float(b.tilt_beta @ qk[:n_lat])
+                ry_, rz_, _, _, prub = axial_rub(dy, dz, dvy, dvz, omega[k], wi, al, be, abs(x[k]) - a.cl_ax, n_ax,
+                                                 1.0 if x[k] >= 0 else -1.0, c.mu_ax, c.v_reg, p.face_inner_radius,
+                                                 p.face_outer_radius)
+                cols["rub_force_y_n"][k], cols["rub_force_z_n"][k] = ry_, rz_
+                power["axial_rub"][k] += prub
+            ey, ez = qk[r] - qk[o], qk[r + 1] - qk[o + 1]
+            evy, evz = vk[r] - vk[o], vk[r + 1] - vk[o + 1]
+            by, bz = ball_force(ey, ez, p.k_b1, p.k_b2, evy, evz, p.c_b)
+            cols["ball_force_y_n"][k], cols["ball_force_z_n"][k] = by, bz
+            rr = math.hypot(ey, ez)
+            epot[k] += p.k_b1 * rr * rr / 2 + p.k_b2 * rr**3 / 3
+            power["ball_damping"][k] += p.c_b * (evy * evy + evz * evz)
+            if eff["ball_drag"]:
+                thp = harris_palmgren_torque(wi, math.hypot(by, bz), n_ax, contact_angle_deg=p.contact_angle_deg,
+                                             C_s=p.static_load_rating, d_m=p.pitch_diameter, z_hp=p.hp_z,
+                                             y_hp=p.hp_y, omega_reg=OMEGA_REG_HP)
+                cols["drag_torque_nm"][k] = thp
+                power["ball_drag"][k] += -thp * wi
+            oy, oz, ovy, ovz = qk[o], qk[o + 1], vk[o], vk[o + 1]
+            gy, gz = ribbon_force(oy, oz, ovy, ovz, p.k_rib, p.c_rib, eta, c.v_reg)
+            cols["ribbon_force_y_n"][k], cols["ribbon_force_z_n"][k] = gy, gz
+            epot[k] += 0.5 * p.k_rib * (oy * oy + oz * oz)
+            power["ribbon_damping"][k] += p.c_rib * (ovy * ovy + ovz * ovz)
+            ccy, ccz = gy + p.c_rib * ovy + p.k_rib * oy, gz + p.c_rib * ovz + p.k_rib * oz
+            power["ribbon_cross_coupling"][k] += -(ccy * ovy + ccz * ovz)
+            if eff["outer_race_coulomb"] and p.axial_face and n_ax > 0:
+                hy, hz = outer_race_friction(ovy, ovz, n_ax, p.mu_d, c.v_reg)
+                power["outer_race_coulomb"][k] += -(hy * ovy + hz * ovz)
+        power["race_damping"] += p.inner_race_damping * (v[:, r] ** 2 + v[:, r + 1] ** 2) \
+            + p.outer_race_damping * (v[:, o] ** 2 + v[:, o + 1] ** 2)
+        ekin += 0.5 * p.inner_race_mass * (v[:, r] ** 2 + v[:, r + 1] ** 2) + 0.5 * p.inner_race_inertia * v[:, r + 2] ** 2 \
+            + 0.5 * p.outer_race_mass * (v[:, o] ** 2 + v[:, o + 1] ** 2)
+        epot += G_ACC * (p.inner_race_mass * q[:, r + 1] + p.outer_race_mass * q[:, o + 1])
+        for key, val in cols.items():
+            out[pre + key] = val
+        out[pre + "y_m"], out[pre + "z_m"] = q[:, s], q[:, s + 1]
+        out[pre + "race_speed_rpm"] = v[:, r + 2] * 30 / math.pi
+    out["rotor_speed_rpm"] = omega * 30 / math.pi
+    out["axial_position_m"] = x
+    out["kinetic_energy_j"] = ekin
+    out["potential_energy_j"] = epot
+    for k in MECHANISMS:
+        out["power_" + k + "_w"] = power[k]
+        out["dissipated_" + k + "_j"] = _trapz_cum(power[k], t)
+    for k in INPUTS:
+        out["input_" + k + "_j"] = _trapz_cum(inp[k], t)
+    return out
+
+
+def energy_summary(series: dict) -> dict:
+    de = (series["kinetic_energy_j"][-1] + series["potential_energy_j"][-1]) \
+        - (series["kinetic_energy_j"][0] + series["potential_energy_j"][0])
+    diss = {k: float(series["dissipated_" + k + "_j"][-1]) for k in MECHANISMS}
+    inputs = {k: float(series["input_" + k + "_j"][-1]) for k in INPUTS}
+    total = sum(diss.values())
+    residual = de + total - sum(inputs.values())
+    return {"dissipated_j": diss, "dissipated_total_j": total, "input_work_j": inputs,
+            "change_of_mechanical_energy_j": float(de), "balance_residual_j": float(residual),
+            "balance_error_relative": float(abs(residual) / total) if total > 0 else 0.0}
+
+
+def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float | None = None) -> dict:
+    sc = spec.scenario
+    t_drop = sc.amb.t_drop if t_drop is None else t_drop
+    bearings = {}
+    whirls = {}
+    for b in spec.bearings:
+        pre = b.name + "_"
+        y, z = series[pre + "y_m"], series[pre + "z_m"]
+        fy = series[pre + "contact_force_y_n"] + series[pre + "rub_force_y_n"]
+        fz = series[pre + "contact_force_z_n"] + series[pre + "rub_force_z_n"]
+        bearings[b.name] = {
+            "station": b.station,
+            "clearance_m": b.params.clearance,
+            "max_contact_force_n": float(np.max(np.hypot(fy, fz))) if len(t) else 0.0,
+            "vertical_force_range_n": [float(np.min(fz)), float(np.max(fz))],
+            "horizontal_force_range_n": [float(np.min(fy)), float(np.max(fy))],
+            "vertical_displacement_range_m": [float(np.min(z)), float(np.max(z))],
+            "horizontal_displacement_range_m": [float(np.min(y)), float(np.max(y))],
+            "max_penetration_m": float(np.max(series[pre + "penetration_m"])),
+            "final_race_speed_rpm": float(series[pre + "race_speed_rpm"][-1]),
+        }
+        try:
+            spin_hz = series["rotor_speed_rpm"] / 60.0
+            wr = whirl_analysis(t, y, z, clearance=b.params.clearance, spin_hz=spin_hz, t_start=t_drop)
+            whirls[b.name] = wr.to_dict()
+        except ValueError as err:  # record too short for the analysis window
+            whirls[b.name] = {"direction": "none", "frequency_hz": None, "onset_s": None, "amplitude_m": 0.0,
+                              "note": str(err)}
+    # report the DE bearing's whirl (the paper's reference node), others per bearing
+    main = whirls.get("DE") or next(iter(whirls.values()))
+    return {
+        "scenario": sc.name,
+        "whirl": {"direction": main["direction"], "frequency_hz": main["frequency_hz"], "onset_s": main["onset_s"],
+                  "amplitude_m": main.get("amplitude_m", 0.0), "per_bearing": whirls},
+        "bearings": bearings,
+        "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
+                   "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},
+        "axial": {"position_range_m": [float(np.min(series["axial_position_m"])),
+                                       float(np.max(series["axial_position_m"]))],
+                  "max_axial_force_n": float(np.max(np.abs(series["axial_force_n"])))},
+        "energy": energy_summary(series),
+    }

@@ -1,0 +1,312 @@
+"""Landing scenario: the TOML schema of a landing case, read into dataclasses with validation.
+
+A scenario file holds (directly or via ``include``) these tables; field reference with units
+in ``docs/scenario_file.md``::
+
+    [rotor]            the rotor (docs/rotor_file.md); [rotor.reduction] is required here
+    [bearings.DE], [bearings.NDE]   catcher bearing at a rotor station (races, balls, ribbon)
+    [contact]          sleeve / inner-race radial contact and axial-face friction
+    [axial]            rigid-body axial model (eqs 2-5) and the thrust load profile
+    [amb]              magnetic bearings before the drop (PD hold) and the drop instant
+    [spin]             rotor drive and windage (eq 6)
+    [unbalance]        optional unbalance
+    [effects]          switches of the physical effects (model-gap workflow toggles them)
+    [operating]        speed_rpm, t_end
+    [solver]           time step and generalized-alpha settings
+    [output]           sampling of the stored time series
+
+Every effect has an "off" variant selected by ``[effects]``; names are listed in ``EFFECTS``.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from .config import Table, load_toml, parse_value, set_dotted
+from .errors import InputError
+from .rotor import Rotor, rotor_from_dict
+
+#: switchable effects and their defaults (True = on)
+EFFECTS = {
+    "gyroscopic": True,              # Omega G q' of the rotor (eq 1)
+    "radial_friction": True,         # Coulomb friction of the sleeve on the inner race (eq 15-17)
+    "contact_damping": True,         # Hunt-Crossley dissipation of the radial contact (eq 15)
+    "axial_rub": True,               # friction on the axial thrust face, lateral coupling (eq 18-21)
+    "ball_drag": True,               # Harris-Palmgren drag torque on the inner race (eq 23-27)
+    "ribbon_cross_coupling": True,   # sign-switching cross-coupled ribbon stiffness (eq 28-29)
+    "outer_race_coulomb": True,      # outer race / housing Coulomb friction from axial load (eq 30)
+    "windage": True,                 # aerodynamic drag torque on the rotor (eq 6)
+    "unbalance": False,              # rotating unbalance force from [unbalance]
+    "rotor_flexibility": True,       # keep the fixed-interface modes (false: rigid-rotor model)
+}
+
+BEARING_NAMES = ("DE", "NDE")
+
+
+@dataclass(frozen=True)
+class Bearing:
+    name: str
+    station: str
+    clearance: float            # m, radial clearance sleeve / inner-race bore
+    sleeve_radius: float        # m, rotor landing-sleeve radius r_r
+    inner_race_mass: float      # kg
+    inner_race_inertia: float   # kg m^2, about the spin axis
+    inner_race_damping: float   # N s/m, C_i of eq 7 (to ground)
+    outer_race_mass: float      # kg (ring plus what moves with it)
+    outer_race_damping: float   # N s/m, C_o of eq 9 (to ground)
+    k_b1: float                 # N/m, ball load-deflection, linear term (eq 22)
+    k_b2: float                 # N/m^2, quadratic term
+    c_b: float                  # N s/m, ball-set damping
+    contact_angle_deg: float    # deg
+    static_load_rating: float   # N, C_s
+    pitch_diameter: float       # m, d_m
+    hp_z: float                 # Harris-Palmgren z
+    hp_y: float                 # Harris-Palmgren exponent y
+    k_rib: float                # N/m (eq 28)
+    c_rib: float                # N s/m
+    eta: float                  # -, ribbon cross-coupling factor (eq 29)
+    mu_d: float                 # -, outer race / housing Coulomb friction (eq 30)
+    axial_face: bool            # this bearing takes the axial thrust on its face
+    face_inner_radius: float    # m, r1 of the thrust-face annulus
+    face_outer_radius: float    # m, r2
+
+    @property
+    def race_radius(self) -> float:
+        """Inner-race bore radius r_i = r_r + clearance."""
+        return self.sleeve_radius + self.clearance
+
+
+@dataclass(frozen=True)
+class Contact:
+    k_hertz: float      # N/m^exponent
+    exponent: float     # -
+    k_visc: float       # s/m, Hunt-Crossley: F = k_hertz delta^e (1 + k_visc/k_hertz ... ) see user_forces
+    mu_rad: float       # -
+    mu_ax: float        # -
+    v_reg: float        # m/s, friction regularisation velocity
+
+
+@dataclass(frozen=True)
+class Axial:
+    cl_ax: float        # m
+    delta_m: float      # m
+    k_cb: float         # N/m
+    k_ws: float         # N/m
+    k_h: float          # N/m
+    c_ax: float         # N s/m
+    f_thrust: float     # N, thrust towards the axial face (positive pushes the rotor to +x)
+    t_thrust: float     # s, thrust switched on
+    ramp_s: float       # s, linear ramp duration
+
+
+@dataclass(frozen=True)
+class Amb:
+    stiffness: float    # N/m, PD hold of each radial AMB before the drop
+    damping: float      # N s/m
+    axial_stiffness: float
+    axial_damping: float
+    t_drop: float       # s
+    drop_radial: bool
+    drop_axial: bool
+
+
+@dataclass(frozen=True)
+class Spin:
+    drive: str          # "coast" | "constant"
+    drive_gain: float   # N m s/rad, speed controller gain when drive = "constant"
+    c_w1: float         # N m s/rad
+    c_w2: float         # N m s^2/rad^2
+
+
+@dataclass(frozen=True)
+class Unbalance:
+    station: str
+    magnitude: float    # kg m (mass x eccentricity)
+    phase_deg: float
+
+
+@dataclass(frozen=True)
+class Solver:
+    step: float         # s
+    spectral_radius: float
+    modified_newton: bool
+    output_period: float  # s
+
+
+@dataclass
+class Scenario:
+    name: str
+    rotor: Rotor
+    bearings: dict[str, Bearing]
+    contact: Contact
+    axial: Axial
+    amb: Amb
+    spin: Spin
+    unbalance: Unbalance | None
+    effects: dict[str, bool]
+    speed_rpm: float
+    t_end: float
+    solver: Solver
+    raw: dict = field(repr=False, default_factory=dict)  # the fully resolved input tables
+    source: str | None = None
+
+    @property
+    def omega0(self) -> float:
+        return self.speed_rpm * math.pi / 30.0
+
+
+def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
+    station = t.string("station")
+    if station not in rotor.stations:
+        raise InputError(f"{t.path}.station", station, f"unknown station; defined: {', '.join(rotor.stations)}")
+    pos = dict(positive=True)
+    nn = dict(nonnegative=True)
+    b = Bearing(
+        name=name, station=station,
+        clearance=t.number("clearance", **pos),
+        sleeve_radius=t.number("sleeve_radius", **pos),
+        inner_race_mass=t.number("inner_race_mass", **pos),
+        inner_race_inertia=t.number("inner_race_inertia", **pos),
+        inner_race_damping=t.number("inner_race_damping", 0.0, **nn),
+        outer_race_mass=t.number("outer_race_mass", **pos),
+        outer_race_damping=t.number("outer_race_damping", 0.0, **nn),
+        k_b1=t.number("k_b1", **pos), k_b2=t.number("k_b2", 0.0, **nn), c_b=t.number("c_b", 0.0, **nn),
+        contact_angle_deg=t.number("contact_angle_deg", **pos, upper=90.0),
+        static_load_rating=t.number("static_load_rating", **pos),
+        pitch_diameter=t.number("pitch_diameter", **pos),
+        hp_z=t.number("hp_z", **nn), hp_y=t.number("hp_y", **nn),
+        k_rib=t.number("k_rib", **pos), c_rib=t.number("c_rib", 0.0, **nn),
+        eta=t.number("eta", 0.0, **nn), mu_d=t.number("mu_d", 0.0, **nn),
+        axial_face=t.boolean("axial_face", False),
+        face_inner_radius=t.number("face_inner_radius", 0.0, **nn),
+        face_outer_radius=t.number("face_outer_radius", 0.0, **nn),
+    )
+    if b.axial_face and not 0 < b.face_inner_radius < b.face_outer_radius:
+        raise InputError(f"{t.path}.face_outer_radius", b.face_outer_radius,
+                         f"with axial_face = true need 0 < face_inner_radius ({b.face_inner_radius}) < face_outer_radius")
+    t.finish()
+    return b
+
+
+def scenario_from_dict(data: dict, *, source: str | None = None, name: str | None = None) -> Scenario:
+    try:
+        return _scenario(copy.deepcopy(data), source, name)
+    except InputError as err:
+        raise err.with_file(source) if source else err
+
+
+def _scenario(data: dict, source, name) -> Scenario:
+    rotor = rotor_from_dict(data)
+    if rotor.reduction is None:
+        raise InputError("rotor.reduction", None, "missing table: the landing model needs boundary_stations and modes")
+    top = Table(data, "")
+    top.raw("rotor")
+    title = top.string("name", name or (Path(source).stem if source else "scenario"))
+
+    bt = top.table("bearings")
+    bearings = {}
+    for key in bt.data:
+        if key not in BEARING_NAMES:
+            raise InputError(f"bearings.{key}", bt.data[key], f"unknown bearing; allowed: {', '.join(BEARING_NAMES)}")
+        bearings[key] = _bearing(key, bt.table(key), rotor)
+    if not bearings:
+        raise InputError("bearings", {}, "define [bearings.DE] and/or [bearings.NDE]")
+    for b in bearings.values():
+        if b.station not in rotor.reduction.boundary_stations:
+            raise InputError(f"bearings.{b.name}.station", b.station,
+                             f"must be a Craig-Bampton boundary station ({', '.join(rotor.reduction.boundary_stations)})")
+    if sum(b.axial_face for b in bearings.values()) > 1:
+        raise InputError("bearings", "axial_face", "at most one bearing can take the axial thrust (axial_face = true)")
+
+    c = top.table("contact")
+    contact = Contact(c.number("k_hertz", positive=True), c.number("exponent", 1.5, positive=True),
+                      c.number("k_visc", 0.0, nonnegative=True), c.number("mu_rad", nonnegative=True),
+                      c.number("mu_ax", nonnegative=True), c.number("v_reg", 1e-3, positive=True))
+    c.finish()
+
+    a = top.table("axial")
+    axial = Axial(a.number("cl_ax", nonnegative=True), a.number("delta_m", positive=True),
+                  a.number("k_cb", positive=True), a.number("k_ws", positive=True), a.number("k_h", positive=True),
+                  a.number("c_ax", 0.0, nonnegative=True), a.number("f_thrust", 0.0),
+                  a.number("t_thrust", 0.0, nonnegative=True), a.number("ramp_s", 0.0, nonnegative=True))
+    a.finish()
+
+    m = top.table("amb")
+    amb = Amb(m.number("stiffness", positive=True), m.number("damping", 0.0, nonnegative=True),
+              m.number("axial_stiffness", positive=True), m.number("axial_damping", 0.0, nonnegative=True),
+              m.number("t_drop", 0.0, nonnegative=True), m.boolean("drop_radial", True), m.boolean("drop_axial", False))
+    m.finish()
+
+    s = top.table("spin", {})
+    drive = s.string("drive", "coast")
+    if drive not in ("coast", "constant"):
+        raise InputError("spin.drive", drive, "must be 'coast' or 'constant'")
+    spin = Spin(drive, s.number("drive_gain", 0.0, nonnegative=True),
+                s.number("c_w1", 0.0, nonnegative=True), s.number("c_w2", 0.0, nonnegative=True))
+    s.finish()
+
+    e = top.table("effects", {})
+    effects = dict(EFFECTS)
+    for key in e.data:
+        if key not in EFFECTS:
+            raise InputError(f"effects.{key}", e.data[key], f"unknown effect; allowed: {', '.join(EFFECTS)}")
+        effects[key] = e.boolean(key)
+    e.finish()
+
+    unbalance = None
+    if top.has("unbalance"):
+        u = top.table("unbalance")
+        st = u.string("station")
+        if st not in rotor.stations:
+            raise InputError("unbalance.station", st, f"unknown station; defined: {', '.join(rotor.stations)}")
+        unbalance = Unbalance(st, u.number("magnitude", nonnegative=True), u.number("phase_deg", 0.0))
+        u.finish()
+    elif effects["unbalance"]:
+        raise InputError("effects.unbalance", True, "needs an [unbalance] table (station, magnitude)")
+
+    o = top.table("operating")
+    speed = o.number("speed_rpm", nonnegative=True)
+    t_end = o.number("t_end", positive=True)
+    o.finish()
+    if t_end <= amb.t_drop:
+        raise InputError("operating.t_end", t_end, f"must be > amb.t_drop ({amb.t_drop} s)")
+    if spin.drive == "constant" and spin.drive_gain <= 0:
+        raise InputError("spin.drive_gain", spin.drive_gain, "must be > 0 when drive = 'constant'")
+
+    sv = top.table("solver", {})
+    solver = Solver(sv.number("step", 1e-5, positive=True), sv.number("spectral_radius", 0.8),
+                    sv.boolean("modified_newton", True), sv.number("output_period", 1e-4, positive=True))
+    sv.finish()
+    if not 0.0 <= solver.spectral_radius <= 1.0:
+        raise InputError("solver.spectral_radius", solver.spectral_radius, "must lie in [0, 1]")
+    if solver.step > t_end:
+        raise InputError("solver.step", solver.step, f"must be <= operating.t_end ({t_end} s)")
+    if solver.output_period < solver.step:
+        raise InputError("solver.output_period", solver.output_period, f"must be >= solver.step ({solver.step} s)")
+    top.finish()
+    return Scenario(title, rotor, bearings, contact, axial, amb, spin, unbalance, effects, speed, t_end, solver,
+                    raw=data, source=source)
+
+
+def load_scenario(path, overrides: list[str] | None = None) -> Scenario:
+    """Read a scenario file, apply ``--set key=value`` overrides, validate."""
+    path = Path(path)
+    try:
+        data = load_toml(path)
+    except InputError as err:
+        raise err.with_file(str(path)) from None
+    for item in overrides or []:
+        if "=" not in item:
+            raise InputError("--set", item, "must look like dotted.key=value")
+        key, text = item.split("=", 1)
+        key = key.strip()
+        try:
+            # effects may be absent from the file yet are known switches with defaults
+            set_dotted(data, key, parse_value(text.strip()),
+                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS))
+        except InputError as err:
+            raise InputError(f"--set {key}", text.strip(), err.allowed) from None
+    return scenario_from_dict(data, source=str(path))

@@ -1,0 +1,77 @@
+"""Tests of user_forces.ball_bearing (eq 22; Harris-Palmgren eqs 23-27, corrected)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from user_forces.ball_bearing import ball_force, harris_palmgren_torque
+
+HP = dict(contact_angle_deg=40.0, C_s=45000.0, d_m=0.085, z_hp=0.001, y_hp=0.33,
+          omega_reg=0.1)
+
+
+def test_ball_force_restoring_polynomial_and_action_reaction():
+    assert ball_force(0.0, 0.0, 1e8, 1e12) == (0.0, 0.0)        # r = 0 regular
+    k1, k2 = 2e8, 3e12
+    dy, dz = 3e-6, -4e-6                                         # r = 5e-6
+    fy, fz = ball_force(dy, dz, k1, k2)
+    mag = k2 * 25e-12 + k1 * 5e-6                                # = 75 + 1000 = 1075 N
+    assert math.hypot(fy, fz) == pytest.approx(1075.0, rel=1e-12)
+    assert fy * dy + fz * dz < 0.0                               # restoring (towards outer)
+    assert fy == pytest.approx(-mag * 0.6) and fz == pytest.approx(mag * 0.8)
+    # outer race gets the opposite: swapping roles flips the force
+    assert ball_force(-dy, -dz, k1, k2) == pytest.approx((-fy, -fz))
+    # optional viscous term
+    gy, gz = ball_force(dy, dz, k1, k2, dvy=0.1, dvz=0.0, c_b=100.0)
+    assert (gy - fy, gz - fz) == pytest.approx((-10.0, 0.0))
+
+
+def test_eq26_ys_catalogue_values():
+    # Y_s from eq 26 with the contact angle in degrees matches catalogue Y0 (0.46 @ 15, 0.26 @ 40)
+    def ys(a):
+        return 7.1429e-5 * a * a - 1.2443e-2 * a + 0.64129
+    assert ys(15.0) == pytest.approx(0.46, abs=0.015)
+    assert ys(40.0) == pytest.approx(0.26, abs=0.005)
+
+
+def test_harris_palmgren_hand_calculation():
+    # Case 1: Fr = 2000 N, Fa = 1000 N, a = 40 deg, C_s = 45000 N, d_m = 0.085 m, z = 0.001,
+    # y = 0.33, omega = 100 rad/s, omega_reg = 0.1 rad/s.
+    #   Y_s   = 7.1429e-5*1600 - 1.2443e-2*40 + 0.64129 = 0.1142864 - 0.49772 + 0.64129 = 0.2578564
+    #   F_s   = 0.5*2000 + 0.2578564*1000 = 1257.8564 < Fr  -> F_s = Fr = 2000 (catalogue rule)
+    #   f1    = 0.001*(2000/45000)^0.33 = 0.001*0.0444444^0.33 = 0.001*0.357915 = 3.57915e-4
+    #   cot40 = 1.1917536;  F_beta = 0.9*1000*1.1917536 - 0.1*2000 = 872.578 < Fr -> 2000
+    #   reg   = 100/sqrt(100^2 + 0.1^2) = 0.9999995
+    #   T     = -3.57915e-4 * 2000 * 0.085 * 0.9999995 = -0.0608455 N m
+    t1 = harris_palmgren_torque(100.0, 2000.0, 1000.0, **HP)
+    assert t1 == pytest.approx(-0.0608455, rel=2e-6)
+    # Case 2: Fr = 1000 N, Fa = 3000 N (the other branches of both max rules)
+    #   F_s    = 0.5*1000 + 0.2578564*3000 = 1273.5692 (> Fr)
+    #   f1     = 0.001*(1273.5692/45000)^0.33 = 0.001*0.0283015^0.33 = 3.083879e-4
+    #   F_beta = 0.9*3000*1.1917536 - 0.1*1000 = 3217.7347 - 100 = 3117.7347 (> Fr)
+    #   T      = -3.083879e-4 * 3117.7347 * 0.085 * 0.9999995 = -0.0817251 N m
+    t2 = harris_palmgren_torque(100.0, 1000.0, 3000.0, **HP)
+    assert t2 == pytest.approx(-0.0817251, rel=2e-6)
+    # loads enter as absolute values; the torque opposes the relative spin (odd in omega)
+    assert harris_palmgren_torque(-100.0, -1000.0, -3000.0, **HP) == pytest.approx(-t2)
+
+
+def test_harris_palmgren_f_beta_never_negative_pure_radial():
+    # the printed eq 27 gives F_beta = -0.1 Fr < 0 for Fa = 0 (a driving torque); with Harris's
+    # max rule F_beta = Fr and the torque still opposes the spin
+    t = harris_palmgren_torque(50.0, 3000.0, 0.0, **HP)
+    f1 = 0.001 * (3000.0 / 45000.0) ** 0.33       # F_s = max(0.5*3000, 3000) = 3000
+    assert t < 0.0
+    assert t == pytest.approx(-f1 * 3000.0 * 0.085, rel=1e-5)
+    assert harris_palmgren_torque(50.0, 0.0, 0.0, **HP) == 0.0
+
+
+def test_harris_palmgren_regularised_sign():
+    t_small = harris_palmgren_torque(1e-4, 1000.0, 3000.0, **HP)
+    t_big = harris_palmgren_torque(100.0, 1000.0, 3000.0, **HP)
+    assert abs(t_small) < 2e-3 * abs(t_big)                       # smooth through zero
+    assert harris_palmgren_torque(0.0, 1000.0, 3000.0, **HP) == 0.0
+    with pytest.raises(ValueError):
+        harris_palmgren_torque(1.0, 1.0, 1.0, **{**HP, "contact_angle_deg": 0.0})

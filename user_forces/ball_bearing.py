@@ -1,0 +1,83 @@
+"""Catcher-bearing balls: race-to-race force (eq 22) and Harris-Palmgren drag torque (eqs 23-27).
+
+Ball force (eq 22).  r = O_inner - O_outer (displacement of the inner-race centre relative to the
+outer-race centre), r = |r|, r_hat = r / r.  Force on the inner race from the balls
+
+    F_io = -(k_b2 r^2 + k_b1 r) r_hat - c_b dv = -(k_b2 r + k_b1) r - c_b dv
+
+(the paper prints ``+(...) i_1`` without the restoring sign; the balls pull the inner race back).
+The second form needs no division, so r = 0 is regular.  The outer race gets F_oi = -F_io.  The
+optional viscous term c_b dv (dv = rate of r) is not in the paper (default 0).
+
+Drag torque (eqs 23-27, Harris & Kotzalas "Rolling Bearing Analysis", Palmgren load term):
+
+    T = -f1 F_beta d_m reg(omega),  reg(w) = w / sqrt(w^2 + omega_reg^2)
+
+on the inner race, opposing its spin ``omega`` relative to the outer race (the paper prints eq 23
+without sign and with the discontinuous sign implied).  Loads enter as absolute values
+Fr = |f_radial|, Fa = |f_axial| (dynamic loads, as in the paper).
+
+- eq 26: Y_s = c1 a^2 + c2 a + c3 with the contact angle a in DEGREES (check: 15 deg -> 0.47,
+  40 deg -> 0.26, the catalogue Y0 values of angular-contact ball bearings).
+- eq 25: F_s = X_s Fr + Y_s Fa, with the catalogue rule F_s >= Fr (the static equivalent load is
+  never below the radial load): F_s = max(X_s Fr + Y_s Fa, Fr).
+- eq 24: printed ``f1 = z F_s^y / C_s`` is garbled; Harris: f1 = z (F_s / C_s)^y, for
+  angular-contact ball bearings z ~ 0.001, y = 0.33.
+- eq 27: F_beta = c4 Fa cot(a) + c5 Fr = 0.9 Fa cot a - 0.1 Fr goes negative at small Fa (a pure
+  radial load would give a negative, i.e. driving, torque).  Harris's rule is
+  F_beta = max(0.9 Fa cot a - 0.1 Fr, Fr), which we implement: max(c4 Fa cot a + c5 Fr, Fr).
+
+Default ``omega_reg`` = 0.1 rad/s (~1 rpm): far below the race speeds of interest (up to ~1000
+rad/s), while the equivalent viscous coefficient f1 F_beta d_m / omega_reg (~0.5 N m s for
+T ~ 0.05 N m) keeps the race spin equation only mildly stiff (time constant ~1e-4 s for a race of
+1e-4..1e-3 kg m^2).
+"""
+
+from math import cos, sin, sqrt, radians
+
+OMEGA_REG_DEFAULT = 0.1
+
+
+def ball_force(dy, dz, k_b1, k_b2, dvy=0.0, dvz=0.0, c_b=0.0):
+    """Force (Fy, Fz) on the INNER race from the balls (eq 22); the outer race gets (-Fy, -Fz).
+
+    dy, dz : r = inner-race centre - outer-race centre [m];  dvy, dvz: its rate [m/s]
+    k_b1 [N/m], k_b2 [N/m^2] : linear and quadratic coefficients of the load-deflection fit
+    c_b [N s/m] : optional viscous damping between the races (not in the paper; default 0)
+    """
+    k = k_b2 * sqrt(dy * dy + dz * dz) + k_b1
+    return (-k * dy - c_b * dvy, -k * dz - c_b * dvz)
+
+
+def harris_palmgren_torque(omega_race_rel, f_radial, f_axial, *, contact_angle_deg, C_s, d_m,
+                           z_hp, y_hp, X_s=0.5, c1=7.1429e-5, c2=-1.2443e-2, c3=0.64129,
+                           c4=0.9, c5=-0.1, omega_reg=OMEGA_REG_DEFAULT):
+    """Harris-Palmgren load-dependent drag torque on the inner race (eqs 23-27, corrected) [N m].
+
+    omega_race_rel : inner-race spin relative to the outer race [rad/s]
+    f_radial, f_axial : radial and axial bearing loads [N] (absolute values are used)
+    contact_angle_deg : contact angle a [deg], 0 < a < 90;  C_s: static load rating C0 [N]
+    d_m : pitch diameter [m];  z_hp, y_hp: Harris f1 coefficients (ball: ~0.001, 0.33)
+    X_s, c1..c5 : eqs 25-27 coefficients (paper values by default)
+    omega_reg : regularisation of the sign of omega [rad/s] (> 0)
+
+    Returns T = -f1 F_beta d_m reg(omega_race_rel) (opposes the relative spin).
+    """
+    if not 0.0 < contact_angle_deg < 90.0:
+        raise ValueError("contact_angle_deg must be in (0, 90)")
+    fr = abs(f_radial)
+    fa = abs(f_axial)
+    a = contact_angle_deg
+    y_s = (c1 * a + c2) * a + c3
+    f_s = X_s * fr + y_s * fa
+    if f_s < fr:
+        f_s = fr
+    if f_s <= 0.0:
+        return 0.0
+    f1 = z_hp * (f_s / C_s) ** y_hp
+    ar = radians(a)
+    f_beta = c4 * fa * cos(ar) / sin(ar) + c5 * fr
+    if f_beta < fr:
+        f_beta = fr
+    return -f1 * f_beta * d_m * omega_race_rel / sqrt(omega_race_rel * omega_race_rel
+                                                      + omega_reg * omega_reg)
