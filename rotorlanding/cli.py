@@ -116,6 +116,44 @@ def cmd_reduce(args) -> int:
     return 0
 
 
+def _load_case(path: str, overrides):
+    """A scenario TOML file, or a results.h5 whose stored scenario is re-run."""
+    from .scenario import load_scenario, scenario_from_dict
+
+    if path.endswith(".h5"):
+        from pathlib import Path
+
+        from .config import parse_value, set_dotted
+        from .results import read_results
+
+        if not Path(path).is_file():
+            raise InputError("file", path, "file not found")
+        data = read_results(path)["scenario"]
+        for item in overrides or []:
+            if "=" not in item:
+                raise InputError("--set", item, "must look like dotted.key=value")
+            key, text = item.split("=", 1)
+            set_dotted(data, key.strip(), parse_value(text.strip()))
+        return scenario_from_dict(data, source=path)
+    return load_scenario(path, overrides)
+
+
+def cmd_run(args) -> int:
+    from .run import format_summary, run_scenario
+
+    overrides = list(args.set or [])
+    if args.t_end is not None:
+        overrides.append(f"operating.t_end={args.t_end}")
+    scenario = _load_case(args.scenario, overrides)  # validates everything before writing anything
+    summary = run_scenario(scenario, args.out, progress=None if not args.quiet else False, plots=not args.no_plots)
+    print(format_summary(summary))
+    print(f"results written to {args.out}/ (results.h5, summary.json" + ("" if args.no_plots else ", figures") + ")")
+    if not summary.get("complete", True):
+        print(f"rotorlanding: run incomplete: {summary.get('message', '')}", file=sys.stderr)
+        return 1
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -131,6 +169,16 @@ def build_parser() -> argparse.ArgumentParser:
                    help="full FE model (default) or the Craig-Bampton model of [rotor.reduction]")
     m.add_argument("--free", action="store_true", help="ignore [[rotor.supports]] (free-free rotor)")
     m.set_defaults(func=cmd_modes)
+
+    u = sub.add_parser("run", help="simulate a landing scenario: results.h5, summary.json, figures")
+    u.add_argument("scenario", help="scenario TOML file (or a results.h5 to re-run its stored scenario)")
+    u.add_argument("--out", default="out", help="output folder (default ./out)")
+    u.add_argument("--t-end", type=float, default=None, help="override operating.t_end [s]")
+    u.add_argument("--set", action="append", metavar="KEY=VALUE",
+                   help="override a scenario value, e.g. --set contact.mu_rad=0.3 (repeatable)")
+    u.add_argument("--no-plots", action="store_true", help="skip the figures")
+    u.add_argument("--quiet", action="store_true", help="no progress bar")
+    u.set_defaults(func=cmd_run)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")

@@ -1,0 +1,132 @@
+"""Figures of a landing run (PNG): displacements, forces, orbits with the clearance circle,
+speeds, full spectrum, energy."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .whirl import full_spectrum
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: float = 0.0) -> list[Path]:
+    """Write every figure; ``bearings`` maps name -> clearance [m]. Returns the files written."""
+    plt = _plt()
+    out = Path(out_dir)
+    files = []
+    names = list(bearings)
+    title = summary.get("scenario", "")
+
+    fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), sharex=True, squeeze=False)
+    for ax, b in zip(axes[:, 0], names):
+        ax.plot(t, series[f"{b}_z_m"] * 1e3, label="vertical z")
+        ax.plot(t, series[f"{b}_y_m"] * 1e3, label="horizontal y", alpha=0.8)
+        c = bearings[b] * 1e3
+        ax.axhline(-c, color="k", ls=":", lw=0.8)
+        ax.axhline(c, color="k", ls=":", lw=0.8)
+        ax.set_ylabel(f"{b} journal [mm]")
+        ax.legend(loc="upper right", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    fig.suptitle(f"{title}: journal displacement (dotted: +/- radial clearance)")
+    fig.tight_layout()
+    files.append(out / "displacements.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), sharex=True, squeeze=False)
+    for ax, b in zip(axes[:, 0], names):
+        fz = -(series[f"{b}_contact_force_z_n"] + series[f"{b}_rub_force_z_n"])
+        fy = -(series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"])
+        ax.plot(t, fz * 1e-3, label="vertical (on the race)")
+        ax.plot(t, fy * 1e-3, label="horizontal (on the race)", alpha=0.8)
+        ax.set_ylabel(f"{b} contact force [kN]")
+        ax.legend(loc="upper right", fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    fig.suptitle(f"{title}: sleeve/inner-race contact force")
+    fig.tight_layout()
+    files.append(out / "forces.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 5), squeeze=False)
+    for ax, b in zip(axes[0], names):
+        c = bearings[b] * 1e3
+        th = np.linspace(0, 2 * np.pi, 200)
+        ax.plot(c * np.cos(th), c * np.sin(th), "b-", lw=1.2, label="clearance circle")
+        ax.plot(series[f"{b}_y_m"] * 1e3, series[f"{b}_z_m"] * 1e3, "k-", lw=0.5, label="orbit")
+        ax.set_aspect("equal")
+        ax.set_xlabel("y (horizontal) [mm]")
+        ax.set_ylabel("z (vertical) [mm]")
+        w = summary["whirl"]["per_bearing"].get(b, {})
+        txt = w.get("direction", "none")
+        if w.get("frequency_hz"):
+            txt += f" whirl {w['frequency_hz']:.1f} Hz"
+        ax.set_title(f"{b} orbit: {txt}")
+        ax.grid(alpha=0.3)
+        ax.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    files.append(out / "orbits.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    ax.plot(t, series["rotor_speed_rpm"], "k", label="rotor")
+    for b in names:
+        ax.plot(t, series[f"{b}_race_speed_rpm"], label=f"{b} inner race")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("speed [rpm]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.set_title(f"{title}: rotor and inner-race speeds")
+    fig.tight_layout()
+    files.append(out / "speeds.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), squeeze=False)
+    sel = t >= t_drop
+    for ax, b in zip(axes[:, 0], names):
+        if sel.sum() >= 16:
+            f, a = full_spectrum(t[sel], series[f"{b}_y_m"][sel], series[f"{b}_z_m"][sel])
+            ax.plot(f, a * 1e6, "k-", lw=0.8)
+            spin = series["rotor_speed_rpm"][-1] / 60.0
+            ax.axvline(spin, color="r", ls="--", lw=0.8, label="+1x (end of run)")
+            ax.axvline(-spin, color="r", ls=":", lw=0.8, label="-1x")
+            ax.set_xlim(-3 * spin, 3 * spin)
+        ax.set_ylabel(f"{b} [um]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[-1, 0].set_xlabel("full-spectrum frequency [Hz] (negative = backward whirl)")
+    fig.suptitle(f"{title}: full spectrum of y + i z after the drop")
+    fig.tight_layout()
+    files.append(out / "spectrum.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    for k, v in series.items():
+        if k.startswith("dissipated_") and v[-1] > 1e-3 * max(1e-12, summary["energy"]["dissipated_total_j"]):
+            ax.plot(t, v, label=k[len("dissipated_"):-2].replace("_", " "))
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("energy dissipated [J]")
+    ax.set_yscale("symlog", linthresh=1e-2)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.set_title(f"{title}: energy lost per mechanism")
+    fig.tight_layout()
+    files.append(out / "energy.png")
+    fig.savefig(files[-1], dpi=110)
+    plt.close(fig)
+    return files

@@ -1,0 +1,94 @@
+"""Results files: ``results.h5`` (every time series with units, the resolved scenario, the
+package version) and ``summary.json``.
+
+HDF5 layout::
+
+    /                 attrs: package, package_version, exudyn_version, scenario_name, complete,
+                             t_reached_s, message, created_utc
+    /scenario_json    the fully resolved scenario tables (JSON text): `rotorlanding run results.h5`
+                      re-runs exactly this case
+    /time_s           sample times [s]
+    /states/q, /states/v   generalised coordinates and velocities, attrs: names, units
+    /series/NAME      derived time series; attr unit (SI, given by the name's suffix)
+    /summary_json     the summary (JSON text)
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+
+SUFFIX_UNITS = {"_m": "m", "_n": "N", "_nm": "N m", "_j": "J", "_w": "W", "_rpm": "rpm", "_m_s": "m/s", "_s": "s"}
+
+
+def unit_of(name: str) -> str:
+    for suffix in sorted(SUFFIX_UNITS, key=len, reverse=True):
+        if name.endswith(suffix):
+            return SUFFIX_UNITS[suffix]
+    return "-"
+
+
+def coordinate_units(names: list[str]) -> list[str]:
+    out = []
+    for nm in names:
+        if nm.startswith("mode"):
+            out.append("kg^0.5 m (mass-normalised modal coordinate)")
+        elif nm == "theta" or nm.endswith("phi"):
+            out.append("rad")
+        else:
+            out.append("m")
+    return out
+
+
+def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[str], t, q, v, series: dict,
+                  summary: dict, complete: bool, t_reached: float, message: str = "") -> Path:
+    import exudyn
+    import h5py
+
+    path = Path(path)
+    tmp = path.with_suffix(".h5.part")
+    with h5py.File(tmp, "w") as h5:
+        h5.attrs["package"] = "rotorlanding"
+        h5.attrs["package_version"] = __version__
+        h5.attrs["exudyn_version"] = exudyn.__version__
+        h5.attrs["scenario_name"] = scenario_name
+        h5.attrs["complete"] = bool(complete)
+        h5.attrs["t_reached_s"] = float(t_reached)
+        h5.attrs["message"] = message
+        h5.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+        h5["scenario_json"] = json.dumps(scenario_raw)
+        h5["time_s"] = np.asarray(t)
+        h5["time_s"].attrs["unit"] = "s"
+        g = h5.create_group("states")
+        for key, arr, vel in (("q", q, False), ("v", v, True)):
+            ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4)
+            units = coordinate_units(names)
+            if vel:
+                units = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in units]
+            ds.attrs["names"] = json.dumps(names)
+            ds.attrs["units"] = json.dumps(units)
+        s = h5.create_group("series")
+        for name, arr in series.items():
+            ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4)
+            ds.attrs["unit"] = unit_of(name)
+        h5["summary_json"] = json.dumps(summary)
+    tmp.replace(path)
+    return path
+
+
+def read_results(path) -> dict:
+    """Load a results file into plain numpy arrays and dicts."""
+    import h5py
+
+    with h5py.File(path, "r") as h5:
+        out = {"attrs": dict(h5.attrs), "scenario": json.loads(h5["scenario_json"][()]),
+               "time_s": h5["time_s"][()], "q": h5["states/q"][()], "v": h5["states/v"][()],
+               "names": json.loads(h5["states/q"].attrs["names"]),
+               "series": {k: h5["series"][k][()] for k in h5["series"]},
+               "summary": json.loads(h5["summary_json"][()])}
+    return out

@@ -1,0 +1,136 @@
+"""Run a landing scenario end to end: build, solve with progress, post-process, write results.
+
+A run that fails part-way (solver divergence) keeps what it computed: results.h5 and
+summary.json hold the states up to the time reached, the summary says ``"complete": false``
+with that time and the solver's message, and :func:`run_scenario` reports it so the CLI exits
+non-zero.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .exudyn_model import SolverSettings, build_exudyn, collect, solve
+from .landing import build_spec
+from .postprocess import evaluate, summarize
+from .results import write_results
+from .scenario import Scenario
+
+PROGRESS_MIN_STEPS = 20000  # show a progress bar for runs of at least this many steps
+
+
+class Progress:
+    """Text progress bar on stderr, driven by Exudyn's pre-step user function."""
+
+    def __init__(self, t0: float, t1: float, stream=sys.stderr, width: int = 30):
+        self.t0, self.t1, self.stream, self.width = t0, t1, stream, width
+        self.next = 0.0
+        self.wall0 = time.perf_counter()
+
+    def __call__(self, mbs, t) -> bool:
+        frac = (t - self.t0) / (self.t1 - self.t0)
+        if frac >= self.next:
+            self.next += 0.02
+            n = int(self.width * min(frac, 1.0))
+            wall = time.perf_counter() - self.wall0
+            self.stream.write(f"\r[{'#' * n}{' ' * (self.width - n)}] {100 * frac:5.1f} %  t = {t:.4f} s  "
+                              f"wall {wall:6.1f} s")
+            self.stream.flush()
+        return True
+
+    def close(self):
+        self.stream.write("\n")
+        self.stream.flush()
+
+
+def simulate(scenario: Scenario, *, progress: bool | None = None):
+    """Solve the scenario; returns (spec, t, q, v, info)."""
+    spec = build_spec(scenario)
+    model = build_exudyn(spec)
+    settings = SolverSettings.from_spec(spec)
+    n_steps = scenario.t_end / settings.step
+    bar = None
+    if progress or (progress is None and n_steps >= PROGRESS_MIN_STEPS):
+        bar = Progress(0.0, scenario.t_end)
+        model.mbs.SetPreStepUserFunction(bar)
+    ok, msg, stats = solve(model, 0.0, scenario.t_end, settings)
+    if bar:
+        bar.close()
+    t, q, v = collect(model)
+    if not ok and len(t):
+        # keep only samples the solver actually reached
+        keep = t <= stats["t_reached"] + 1e-12
+        t, q, v = t[keep], q[keep], v[keep]
+    stats.update(complete=bool(ok), message=msg, simulated_s=float(t[-1]) if len(t) else 0.0)
+    return spec, t, q, v, stats
+
+
+def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True) -> dict:
+    """Simulate and write results.h5, summary.json and the figures into ``out_dir``."""
+    out = Path(out_dir)
+    spec, t, q, v, stats = simulate(scenario, progress=progress)
+    out.mkdir(parents=True, exist_ok=True)
+    if len(t) < 2:
+        summary = {"scenario": scenario.name, "complete": False, "t_reached_s": 0.0, "message": stats["message"],
+                   "performance": {k: stats[k] for k in ("simulated_s", "wall_s", "steps")}}
+        (out / "summary.json").write_text(json.dumps(summary, indent=2))
+        return summary
+    series = evaluate(spec, t, q, v)
+    summary = summarize(spec, t, series)
+    summary["complete"] = stats["complete"]
+    summary["t_reached_s"] = float(t[-1])
+    if not stats["complete"]:
+        summary["message"] = f"solver stopped at t = {t[-1]:.6g} s: {stats['message']}"
+    summary["performance"] = {"simulated_s": stats["simulated_s"], "wall_s": stats["wall_s"], "steps": stats["steps"],
+                              "newton_iterations": stats["newton_iterations"], "jacobians": stats["jacobians"],
+                              "wall_s_per_simulated_s": stats["wall_s"] / max(stats["simulated_s"], 1e-12),
+                              "step_s": scenario.solver.step}
+    summary["units"] = "SI (m, N, s, J); speeds in rpm as named"
+    write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
+                  t=t, q=q, v=v, series=series, summary=summary, complete=stats["complete"],
+                  t_reached=float(t[-1]), message=summary.get("message", ""))
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    if plots:
+        plot_files = __import__("rotorlanding.plots", fromlist=["plot_all"]).plot_all(
+            out, t, series, summary, {b.name: b.params.clearance for b in spec.bearings}, scenario.amb.t_drop)
+        summary["figures"] = [p.name for p in plot_files]
+        (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
+
+
+def format_summary(summary: dict) -> str:
+    """A few lines a designer reads first."""
+    lines = [f"scenario: {summary['scenario']}" + ("" if summary.get("complete", True) else
+                                                   f"  [INCOMPLETE: {summary.get('message', '')}]")]
+    w = summary.get("whirl", {})
+    if w:
+        f = f" at {w['frequency_hz']:.1f} Hz from t = {w['onset_s']:.3f} s" if w.get("frequency_hz") else ""
+        lines.append(f"whirl (DE): {w['direction']}{f}")
+    for name, b in summary.get("bearings", {}).items():
+        lines.append(f"{name}: max contact force {b['max_contact_force_n']:.0f} N, vertical range "
+                     f"{b['vertical_displacement_range_m'][0] * 1e3:+.3f} / {b['vertical_displacement_range_m'][1] * 1e3:+.3f} mm, "
+                     f"horizontal {b['horizontal_displacement_range_m'][0] * 1e3:+.3f} / "
+                     f"{b['horizontal_displacement_range_m'][1] * 1e3:+.3f} mm, inner race {b['final_race_speed_rpm']:.0f} rpm")
+    s = summary.get("speeds")
+    if s:
+        lines.append(f"rotor speed: {s['initial_rotor_rpm']:.0f} -> {s['final_rotor_rpm']:.0f} rpm")
+    e = summary.get("energy")
+    if e:
+        top = sorted(e["dissipated_j"].items(), key=lambda kv: -kv[1])[:3]
+        lines.append(f"energy lost: {e['dissipated_total_j']:.2f} J (" +
+                     ", ".join(f"{k} {v:.2f} J" for k, v in top) +
+                     f"); balance error {100 * e['balance_error_relative']:.3f} %")
+    p = summary.get("performance")
+    if p and "wall_s_per_simulated_s" in p:
+        lines.append(f"performance: {p['simulated_s']:.3f} s simulated in {p['wall_s']:.1f} s wall "
+                     f"({p['wall_s_per_simulated_s']:.2f} s/s), {p['steps']} steps")
+    return "\n".join(lines)
+
+
+__all__ = ["run_scenario", "simulate", "format_summary", "math", "np"]
