@@ -52,10 +52,10 @@ class SolverSettings:
         ti.newton.relativeTolerance = self.newton_relative_tolerance
         ti.newton.absoluteTolerance = self.newton_absolute_tolerance
         ti.verboseMode = 0
-        ss.solutionSettings.writeSolutionToFile = False
-        ss.solutionSettings.sensorsWritePeriod = self.output_period
-        ss.displayComputationTime = False
-        ss.displayStatistics = False
+        ss.solution.file.write = False
+        ss.solution.sensors.writePeriod = self.output_period
+        ss.show.computationTime = False
+        ss.show.statistics = False
         return ss
 
 

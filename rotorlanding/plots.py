@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .postprocess import uniform
 from .whirl import full_spectrum
 
 
@@ -99,7 +100,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     sel = t >= t_drop
     for ax, b in zip(axes[:, 0], names):
         if sel.sum() >= 16:
-            f, a = full_spectrum(t[sel], series[f"{b}_y_m"][sel], series[f"{b}_z_m"][sel])
+            f, a = full_spectrum(*uniform(t[sel], series[f"{b}_y_m"][sel], series[f"{b}_z_m"][sel]))
             ax.plot(f, a * 1e6, "k-", lw=0.8)
             spin = series["rotor_speed_rpm"][-1] / 60.0
             ax.axvline(spin, color="r", ls="--", lw=0.8, label="+1x (end of run)")

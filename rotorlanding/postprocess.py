@@ -199,6 +199,14 @@ def energy_summary(series: dict) -> dict:
             "balance_error_relative": float(abs(residual) / total) if total > 0 else 0.0}
 
 
+def uniform(t: np.ndarray, *arrays: np.ndarray):
+    """Resample to a uniform grid (Exudyn shortens steps after Newton failures, so stored sample
+    times can be irregular; spectra need uniform sampling). Grid step = median sample spacing."""
+    dt = float(np.median(np.diff(t)))
+    tu = t[0] + dt * np.arange(int(np.floor((t[-1] - t[0]) / dt + 1e-9)) + 1)
+    return (tu,) + tuple(np.interp(tu, t, a) for a in arrays)
+
+
 def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float | None = None) -> dict:
     sc = spec.scenario
     t_drop = sc.amb.t_drop if t_drop is None else t_drop
@@ -221,8 +229,8 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
             "final_race_speed_rpm": float(series[pre + "race_speed_rpm"][-1]),
         }
         try:
-            spin_hz = series["rotor_speed_rpm"] / 60.0
-            wr = whirl_analysis(t, y, z, clearance=b.params.clearance, spin_hz=spin_hz, t_start=t_drop)
+            tu, yu, zu, spin_rpm = uniform(t, y, z, series["rotor_speed_rpm"])
+            wr = whirl_analysis(tu, yu, zu, clearance=b.params.clearance, spin_hz=spin_rpm / 60.0, t_start=t_drop)
             whirls[b.name] = wr.to_dict()
         except ValueError as err:  # record too short for the analysis window
             whirls[b.name] = {"direction": "none", "frequency_hz": None, "onset_s": None, "amplitude_m": 0.0,

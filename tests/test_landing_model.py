@@ -1,0 +1,102 @@
+"""Landing model checks: static rest by hand, energy balance, restitution of the contact law."""
+
+import copy
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.config import load_toml
+from rotorlanding.landing import build_spec
+from rotorlanding.postprocess import evaluate, summarize
+from rotorlanding.run import simulate
+from rotorlanding.scenario import scenario_from_dict
+from rotorlanding.timoshenko import GRAVITY
+from user_forces.radial_contact import radial_contact
+
+ROOT = Path(__file__).resolve().parents[1]
+SCEN = ROOT / "scenarios" / "landing_7000rpm.toml"
+
+
+def _scenario(**changes):
+    data = load_toml(SCEN)
+    for dotted, value in changes.items():
+        node = data
+        keys = dotted.split("__")
+        for k in keys[:-1]:
+            node = node.setdefault(k, {})
+        node[keys[-1]] = value
+    return scenario_from_dict(copy.deepcopy(data), source=str(SCEN))
+
+
+def _rotor_mass_and_cg(rotor):
+    """Mass and centre of gravity straight from the geometry (independent of the FE matrices)."""
+    m, mx, x0 = 0.0, 0.0, 0.0
+    for s in rotor.sections:
+        ms = s.material.density * s.area * s.length
+        m += ms
+        mx += ms * (x0 + 0.5 * s.length)
+        x0 += s.length
+    for d in rotor.disks:
+        m += d.mass
+        mx += d.mass * d.position
+    return m, mx / m
+
+
+def test_non_rotating_drop_settles_at_hand_equilibrium():
+    """Weight shared by the lever rule; each support = Hertz + balls + ribbon in series."""
+    sc = _scenario(operating__speed_rpm=0.0, operating__t_end=0.4,
+                   rotor__damping={"mass_proportional": 40.0}, effects__windage=False)
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"]
+    m, xcg = _rotor_mass_and_cg(sc.rotor)
+    x_nde, x_de = sc.rotor.stations["NDE_sleeve"], sc.rotor.stations["DE_sleeve"]
+    w = m * GRAVITY
+    reactions = {"DE": w * (xcg - x_nde) / (x_de - x_nde), "NDE": w * (x_de - xcg) / (x_de - x_nde)}
+    c = sc.contact
+    for b in spec.bearings:
+        p = b.params
+        r = reactions[b.name]
+        hertz = (r / c.k_hertz) ** (1 / c.exponent)
+        fb = r + p.inner_race_mass * GRAVITY  # balls carry the rotor share and the inner race
+        balls = (-p.k_b1 + math.sqrt(p.k_b1**2 + 4 * p.k_b2 * fb)) / (2 * p.k_b2)
+        ribbon = (fb + p.outer_race_mass * GRAVITY) / p.k_rib
+        expected = -(p.clearance + hertz + balls + ribbon)
+        z_end = q[-1, b.i_station + 1]
+        # compare the deflection beyond the clearance (the part the laws produce)
+        assert (z_end + p.clearance) == pytest.approx(expected + p.clearance, rel=0.01), b.name
+        assert abs(q[-1, b.i_station]) < 1e-7  # no friction-driven drift without spin
+        assert np.max(np.abs(v[-200:, b.i_station + 1])) < 1e-4  # at rest
+
+
+def test_energy_balance_half_second_landing_at_7000rpm():
+    sc = _scenario(operating__t_end=0.5, solver__output_period=1e-5)
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"] and t[-1] == pytest.approx(0.5)
+    series = evaluate(spec, t, q, v)
+    e = summarize(spec, t, series)["energy"]
+    assert e["dissipated_total_j"] > 50.0  # a real landing: friction heats the sleeve
+    assert e["balance_error_relative"] < 0.01, e
+    assert e["dissipated_j"]["radial_friction"] > 0.5 * e["dissipated_total_j"]
+    assert all(val >= -1e-9 for val in e["dissipated_j"].values())
+
+
+@pytest.mark.parametrize("e_target", [0.95, 0.9])
+def test_hunt_crossley_restitution(e_target):
+    """A mass striking the race with k_visc = 3 k (1 - e) / (2 v_in) rebounds with ~e v_in."""
+    from scipy.integrate import solve_ivp
+
+    k, n, m, v_in, cl = 2e11, 1.5, 10.0, 0.06, 2e-4
+    kv = 3 * k * (1 - e_target) / (2 * v_in)
+
+    def rhs(t, y):
+        fy, fz = radial_contact(0.0, y[0], 0.0, y[1], 0.0, 0.0, cl, k, n, kv, 0.0, 1e-3, 0.03, 0.0302)[:2]
+        return [y[1], fz / m]
+
+    def leave(t, y):
+        return y[0] + cl - 1e-12 if t > 0 else -1.0
+    leave.terminal, leave.direction = True, 1
+    sol = solve_ivp(rhs, (0, 0.01), [-cl, -v_in], events=leave, rtol=1e-10, atol=1e-14, max_step=1e-6)
+    e = sol.y[1, -1] / v_in
+    assert (1 - e) == pytest.approx(1 - e_target, rel=0.12)
