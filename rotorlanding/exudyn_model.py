@@ -127,10 +127,10 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
                                            initialCoordinates=q0[i:i + 3].tolist(),
                                            initialVelocities=v0[i:i + 3].tolist()))
         nodes.append((race, slice(i, i + 3)))
-        mbs.AddObject(ObjectRigidBody2D(physicsMass=p.inner_race_mass, physicsInertia=p.inner_race_inertia,
+        mbs.AddObject(ObjectRigidBody2D(mass=p.inner_race_mass, inertia=p.inner_race_inertia,
                                         nodeNumber=race))
         outer = point(i + 3)
-        mbs.AddObject(ObjectMassPoint2D(physicsMass=p.outer_race_mass, nodeNumber=outer))
+        mbs.AddObject(ObjectMassPoint2D(mass=p.outer_race_mass, nodeNumber=outer))
         lay = bearing_layout(spec, b)
         if lay["full_lateral"]:
             lat = lateral_nodes

@@ -22,7 +22,8 @@ from .postprocess import evaluate, summarize
 from .results import write_results
 from .scenario import Scenario
 
-PROGRESS_MIN_STEPS = 20000  # show a progress bar for runs of at least this many steps
+PROGRESS_MIN_STEPS = 20000
+ENERGY_WARN = 0.05  # relative energy-balance error above which the summary warns  # show a progress bar for runs of at least this many steps
 
 
 class Progress:
@@ -92,6 +93,12 @@ def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, p
                               "wall_s_per_simulated_s": stats["wall_s"] / max(stats["simulated_s"], 1e-12),
                               "step_s": scenario.solver.step}
     summary["units"] = "SI (m, N, s, J); speeds in rpm as named"
+    warnings = []
+    err = summary["energy"]["balance_error_relative"]
+    if err > ENERGY_WARN:
+        warnings.append(f"energy balance error {100 * err:.1f} % > {100 * ENERGY_WARN:.0f} %: the time step "
+                        f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
+    summary["warnings"] = warnings
     write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
                   t=t, q=q, v=v, series=series, summary=summary, complete=stats["complete"],
                   t_reached=float(t[-1]), message=summary.get("message", ""))
@@ -126,6 +133,8 @@ def format_summary(summary: dict) -> str:
         lines.append(f"energy lost: {e['dissipated_total_j']:.2f} J (" +
                      ", ".join(f"{k} {v:.2f} J" for k, v in top) +
                      f"); balance error {100 * e['balance_error_relative']:.3f} %")
+    for w in summary.get("warnings", []):
+        lines.append(f"WARNING: {w}")
     p = summary.get("performance")
     if p and "wall_s_per_simulated_s" in p:
         lines.append(f"performance: {p['simulated_s']:.3f} s simulated in {p['wall_s']:.1f} s wall "

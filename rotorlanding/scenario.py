@@ -222,7 +222,10 @@ def _scenario(data: dict, source, name) -> Scenario:
         raise InputError("bearings", "axial_face", "at most one bearing can take the axial thrust (axial_face = true)")
 
     c = top.table("contact")
-    contact = Contact(c.number("k_hertz", positive=True), c.number("exponent", 1.5, positive=True),
+    exponent = c.number("exponent", 1.5, positive=True)
+    if not 1.0 <= exponent <= 2.0:
+        raise InputError("contact.exponent", exponent, "must lie in [1, 2] (1 linear, 10/9 line, 1.5 point contact)")
+    contact = Contact(c.number("k_hertz", positive=True), exponent,
                       c.number("k_visc", 0.0, nonnegative=True), c.number("mu_rad", nonnegative=True),
                       c.number("mu_ax", nonnegative=True), c.number("v_reg", 1e-3, positive=True))
     c.finish()

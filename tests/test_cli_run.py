@@ -1,0 +1,82 @@
+"""`rotorlanding run`: outputs, re-run from results.h5, bad input, failure part-way."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.cli import main
+from rotorlanding.results import read_results
+
+ROOT = Path(__file__).resolve().parents[1]
+SCEN = ROOT / "scenarios" / "landing_7000rpm.toml"
+
+
+def test_run_writes_results_summary_and_figures(tmp_path, capsys):
+    out = tmp_path / "run"
+    assert main(["run", str(SCEN), "--out", str(out), "--t-end", "0.06", "--quiet"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["complete"] is True
+    assert summary["whirl"]["direction"] in ("none", "backward", "forward")
+    for b in ("DE", "NDE"):
+        bb = summary["bearings"][b]
+        assert bb["max_contact_force_n"] > 100.0  # it landed
+        lo, hi = bb["vertical_displacement_range_m"]
+        assert lo < -0.9 * bb["clearance_m"] and hi <= 1e-9
+    assert set(summary["energy"]["dissipated_j"]) >= {"radial_friction", "ball_drag", "windage"}
+    assert summary["performance"]["simulated_s"] == pytest.approx(0.06)
+    for fig in ("displacements.png", "forces.png", "orbits.png", "speeds.png", "spectrum.png", "energy.png"):
+        assert (out / fig).stat().st_size > 5000
+    res = read_results(out / "results.h5")
+    assert res["attrs"]["complete"] and res["attrs"]["package_version"]
+    assert res["q"].shape == (len(res["time_s"]), len(res["names"]))
+    units = json.loads(__import__("h5py").File(out / "results.h5")["states/q"].attrs["units"])
+    assert units[0] == "m" and "theta" in res["names"]
+    assert res["scenario"]["operating"]["t_end"] == 0.06
+    # the stored scenario reproduces the run
+    out2 = tmp_path / "rerun"
+    assert main(["run", str(out / "results.h5"), "--out", str(out2), "--quiet", "--no-plots"]) == 0
+    res2 = read_results(out2 / "results.h5")
+    np.testing.assert_allclose(res2["q"], res["q"], atol=1e-12)
+    assert "whirl" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, field", [
+    (["--set", "effects.axial_rubb=true"], "effects.axial_rubb"),
+    (["--set", "bearings.DE.clearance=-2e-4"], "bearings.DE.clearance"),
+    (["--set", "contact.mu_rad=-0.1"], "contact.mu_rad"),
+    (["--set", "amb.t_drop=0.5", "--t-end", "0.4"], "operating.t_end"),
+    (["--set", "contact.nonexistent=1"], "contact.nonexistent"),
+    (["--set", "contact.mu_rad=abc"], "contact.mu_rad"),
+    (["--set", "contact.mu_rad"], "--set"),
+    (["--t-end", "-1"], "operating.t_end"),
+])
+def test_bad_run_input_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, args, field):
+    out = tmp_path / "never"
+    assert main(["run", str(SCEN), "--out", str(out), "--quiet"] + args) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and field in err and "Traceback" not in err
+    assert not out.exists()
+
+
+def test_solver_failure_keeps_results_and_exits_nonzero(tmp_path, capsys, monkeypatch):
+    import rotorlanding.forces as forces
+
+    calls = {"n": 0}
+    real = forces.windage_torque
+
+    def poisoned(omega, c1, c2):  # the run diverges after a few hundred residual evaluations
+        calls["n"] += 1
+        return float("nan") if calls["n"] > 3000 else real(omega, c1, c2)
+
+    monkeypatch.setattr(forces, "windage_torque", poisoned)
+    out = tmp_path / "fail"
+    assert main(["run", str(SCEN), "--out", str(out), "--t-end", "0.05", "--quiet", "--no-plots"]) == 1
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["complete"] is False
+    assert 0 < summary["t_reached_s"] < 0.05
+    assert "stopped at t =" in summary["message"]
+    res = read_results(out / "results.h5")
+    assert not res["attrs"]["complete"] and res["time_s"][-1] == pytest.approx(summary["t_reached_s"])
+    assert "incomplete" in capsys.readouterr().err
