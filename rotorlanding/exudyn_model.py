@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forces import bearing_forces, bearing_layout, rotor_forces
+from .forces import bearing_forces, bearing_layout, rotor_forces, rotor_loads_need_lateral
 from .landing import LandingSpec
 
 
@@ -66,6 +66,39 @@ class ExudynModel:
     spec: LandingSpec
     node_slices: list  # (node number, slice into q)
     sensors: list  # (sensor pos, sensor vel, slice)
+    pre_step: object = None  # PreStep (gyroscopic update + optional progress callback)
+
+
+GYRO_UPDATE_TOL = 1e-4  # relative change of Omega that triggers a new C + Omega G
+
+
+class PreStep:
+    """Exudyn pre-step user function: sets the rotor damping matrix to C + Omega G when Omega has
+    changed by more than GYRO_UPDATE_TOL since the last update (Omega decays slowly during a landing,
+    so this runs a few times per run instead of a G q' product in every residual evaluation), and
+    calls an optional progress callback."""
+
+    def __init__(self, rotor_object, spin_node, C_full, G_full, enabled: bool):
+        import exudyn as exu
+
+        self.obj, self.node = rotor_object, spin_node
+        self.C, self.G = C_full, G_full
+        self.enabled = enabled
+        self.omega = None
+        self.progress = None
+        self.var = exu.OutputVariableType.Coordinates_t
+        self.updates = 0
+
+    def __call__(self, mbs, t) -> bool:
+        if self.enabled:
+            omega = mbs.GetNodeOutput(self.node, self.var)[0]
+            if self.omega is None or abs(omega - self.omega) > GYRO_UPDATE_TOL * max(abs(self.omega), 1.0):
+                mbs.SetObjectParameter(self.obj, "dampingMatrix", self.C + omega * self.G)
+                self.omega = omega
+                self.updates += 1
+        if self.progress is not None:
+            return self.progress(mbs, t)
+        return True
 
 
 def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
@@ -112,13 +145,28 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
     M[spec.i_axial, spec.i_axial] = spec.rotor_mass
     fvec = np.zeros(n_rot)
     fvec[: spec.n_lat] = spec.f_gravity
-    frot = rotor_forces(spec)
+    frot = rotor_forces(spec, gyroscopic_in_user_function=False)
+    G = np.zeros((n_rot, n_rot))
+    G[: spec.n_lat, : spec.n_lat] = spec.G
+    gyro = spec.scenario.effects["gyroscopic"]
+    if gyro:
+        C = C + spec.scenario.omega0 * G
 
     def rotor_uf(mbs_, t, item, q, q_t):
         return frot(t, q, q_t)
 
-    mbs.AddObject(ObjectGenericODE2(nodeNumbers=lateral_nodes + [spin_node], massMatrix=M, stiffnessMatrix=K,
-                                    dampingMatrix=C, forceVector=fvec.tolist(), forceUserFunction=rotor_uf))
+    # the rotor itself is linear (Exudyn differentiates it exactly); its state-dependent loads
+    # (axial model, windage, drive, AMB, unbalance) sit in a zero-mass connector over the few
+    # coordinates they use, so numerical Jacobians stay cheap
+    rotor_obj = mbs.AddObject(ObjectGenericODE2(nodeNumbers=lateral_nodes + [spin_node], massMatrix=M,
+                                                stiffnessMatrix=K, dampingMatrix=C, forceVector=fvec.tolist()))
+    load_nodes = (lateral_nodes if rotor_loads_need_lateral(spec, False) else []) + [spin_node]
+    nl = (spec.n_lat if len(load_nodes) > 1 else 0) + 2
+    mbs.AddObject(ObjectGenericODE2(nodeNumbers=load_nodes, massMatrix=np.zeros((nl, nl)),
+                                    stiffnessMatrix=np.zeros((nl, nl)), dampingMatrix=np.zeros((nl, nl)),
+                                    forceVector=[0.0] * nl, forceUserFunction=rotor_uf))
+    pre = PreStep(rotor_obj, spin_node, C - (spec.scenario.omega0 * G if gyro else 0.0), G, gyro)
+    mbs.SetPreStepUserFunction(pre)
 
     for b in spec.bearings:
         p = b.params
@@ -156,7 +204,7 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
                                       outputVariableType=exu.OutputVariableType.Coordinates_t))
         sensors.append((sp, sv, sl))
     mbs.Assemble()
-    return ExudynModel(SC, mbs, spec, nodes, sensors)
+    return ExudynModel(SC, mbs, spec, nodes, sensors, pre)
 
 
 def collect(model: ExudynModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

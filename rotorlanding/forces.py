@@ -9,7 +9,9 @@ bound once as locals.
 
 Local coordinates
 -----------------
-rotor object:   [lateral (n_lat) | theta, x_ax]
+rotor loads:    [lateral (n_lat) | theta, x_ax], or only [theta, x_ax] when no load acts on the
+                lateral coordinates (no AMB during the run, no unbalance, gyroscopics elsewhere):
+                see :func:`rotor_loads_need_lateral`
 bearing object: [lateral block | theta, x_ax | race_y, race_z, race_phi | outer_y, outer_z]
 where the lateral block is only the bearing's station (y, z) unless the bearing carries the
 axial face with axial rub on, in which case it is the whole lateral vector (the rotor tilt at
@@ -24,7 +26,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -45,12 +47,21 @@ def axial_law(spec: LandingSpec):
     return f
 
 
-def rotor_forces(spec: LandingSpec):
-    """Closure for the rotor object: gyroscopics, AMB hold, unbalance, windage, drive, axial."""
+def rotor_loads_need_lateral(spec: LandingSpec, gyroscopic_in_user_function: bool = True) -> bool:
+    sc = spec.scenario
+    amb_active = sc.amb.t_drop > 0.0 or not sc.amb.drop_radial
+    return amb_active or spec.unbalance_rows is not None or (gyroscopic_in_user_function and sc.effects["gyroscopic"])
+
+
+def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True):
+    """Closure for the rotor object: gyroscopics, AMB hold, unbalance, windage, drive, axial.
+
+    With ``gyroscopic_in_user_function=False`` the caller accounts for -Omega G q' itself (the
+    Exudyn model puts Omega G into the damping matrix before each step, see exudyn_model)."""
     sc = spec.scenario
     eff = sc.effects
     n_lat = spec.n_lat
-    G = spec.G if eff["gyroscopic"] else None
+    G = spec.G if (eff["gyroscopic"] and gyroscopic_in_user_function) else None
     amb = sc.amb
     t_drop = amb.t_drop
     k_amb, c_amb = amb.stiffness, amb.damping
@@ -69,6 +80,8 @@ def rotor_forces(spec: LandingSpec):
     gain, omega0 = sc.spin.drive_gain, sc.omega0
     fax = axial_law(spec)
     thrust = spec.thrust
+    if not rotor_loads_need_lateral(spec, gyroscopic_in_user_function):
+        n_lat = 0  # local coordinates are only [theta, x_ax]
     i_th, i_ax = n_lat, n_lat + 1
 
     def f(t, q, v):
@@ -78,7 +91,7 @@ def rotor_forces(spec: LandingSpec):
         else:
             out = [0.0] * n_lat
         out += [0.0, 0.0]
-        if t < t_drop or not drop_radial:
+        if n_lat and (t < t_drop or not drop_radial):
             for (iy, iz), (by, bz) in zip(rows, bias):
                 out[iy] += by - k_amb * q[iy] - c_amb * v[iy]
                 out[iz] += bz - k_amb * q[iz] - c_amb * v[iz]
@@ -130,8 +143,8 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec):
     mu = c.mu_rad if eff["radial_friction"] else 0.0
     kb1, kb2, cb = p.k_b1, p.k_b2, p.c_b
     drag = eff["ball_drag"]
-    hp = dict(contact_angle_deg=p.contact_angle_deg, C_s=p.static_load_rating, d_m=p.pitch_diameter,
-              z_hp=p.hp_z, y_hp=p.hp_y, omega_reg=OMEGA_REG_HP)
+    hp = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter, p.hp_z, p.hp_y,
+                                   omega_reg=OMEGA_REG_HP)
     krib, crib = p.k_rib, p.c_rib
     eta = p.eta if eff["ribbon_cross_coupling"] else 0.0
     coulomb = eff["outer_race_coulomb"] and p.axial_face
@@ -175,7 +188,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec):
         by, bz = ball_force(q[ry] - q[oy], q[rz] - q[oz], kb1, kb2, v[ry] - v[oy], v[rz] - v[oz], cb)
         if drag:
             f_rad = math.hypot(by, bz)
-            t_race += harris_palmgren_torque(omega_i, f_rad, f_ax, **hp)
+            t_race += harris_palmgren_fast(omega_i, f_rad, f_ax, hp)
         out[ry] = -fy + by - ci * v[ry]
         out[rz] = -fz + bz - ci * v[rz] + wi
         out[rp] = t_race

@@ -28,7 +28,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -116,6 +116,8 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
         mu = c.mu_rad if eff["radial_friction"] else 0.0
         eta = p.eta if eff["ribbon_cross_coupling"] else 0.0
         rub = p.axial_face and eff["axial_rub"]
+        hp = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter, p.hp_z, p.hp_y,
+                                       omega_reg=OMEGA_REG_HP)
         for k in range(nt):
             qk, vk = q[k], v[k]
             dy, dz = qk[s] - qk[r], qk[s + 1] - qk[r + 1]
@@ -151,9 +153,7 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
             epot[k] += p.k_b1 * rr * rr / 2 + p.k_b2 * rr**3 / 3
             power["ball_damping"][k] += p.c_b * (evy * evy + evz * evz)
             if eff["ball_drag"]:
-                thp = harris_palmgren_torque(wi, math.hypot(by, bz), n_ax, contact_angle_deg=p.contact_angle_deg,
-                                             C_s=p.static_load_rating, d_m=p.pitch_diameter, z_hp=p.hp_z,
-                                             y_hp=p.hp_y, omega_reg=OMEGA_REG_HP)
+                thp = harris_palmgren_fast(wi, math.hypot(by, bz), n_ax, hp)
                 cols["drag_torque_nm"][k] = thp
                 power["ball_drag"][k] += -thp * wi
             oy, oz, ovy, ovz = qk[o], qk[o + 1], vk[o], vk[o + 1]

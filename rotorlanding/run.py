@@ -59,7 +59,7 @@ def simulate(scenario: Scenario, *, progress: bool | None = None):
     bar = None
     if progress or (progress is None and n_steps >= PROGRESS_MIN_STEPS):
         bar = Progress(0.0, scenario.t_end)
-        model.mbs.SetPreStepUserFunction(bar)
+        model.pre_step.progress = bar
     ok, msg, stats = solve(model, 0.0, scenario.t_end, settings)
     if bar:
         bar.close()

@@ -63,21 +63,36 @@ def harris_palmgren_torque(omega_race_rel, f_radial, f_axial, *, contact_angle_d
 
     Returns T = -f1 F_beta d_m reg(omega_race_rel) (opposes the relative spin).
     """
+    return harris_palmgren_fast(omega_race_rel, f_radial, f_axial,
+                                harris_palmgren_constants(contact_angle_deg, C_s, d_m, z_hp, y_hp, X_s=X_s, c1=c1,
+                                                          c2=c2, c3=c3, c4=c4, c5=c5, omega_reg=omega_reg))
+
+
+def harris_palmgren_constants(contact_angle_deg, C_s, d_m, z_hp, y_hp, *, X_s=0.5, c1=7.1429e-5, c2=-1.2443e-2,
+                              c3=0.64129, c4=0.9, c5=-0.1, omega_reg=OMEGA_REG_DEFAULT):
+    """Load-independent constants of eqs 23-27, computed once per bearing (validates the angle).
+
+    Returns (X_s, Y_s, 1/C_s, z_hp d_m, y_hp, c4 cot(a), c5, omega_reg^2)."""
     if not 0.0 < contact_angle_deg < 90.0:
         raise ValueError("contact_angle_deg must be in (0, 90)")
-    fr = abs(f_radial)
-    fa = abs(f_axial)
     a = contact_angle_deg
     y_s = (c1 * a + c2) * a + c3
-    f_s = X_s * fr + y_s * fa
+    ar = radians(a)
+    return (X_s, y_s, 1.0 / C_s, z_hp * d_m, y_hp, c4 * cos(ar) / sin(ar), c5, omega_reg * omega_reg)
+
+
+def harris_palmgren_fast(omega_race_rel, f_radial, f_axial, k):
+    """Drag torque from precomputed constants ``k`` (:func:`harris_palmgren_constants`): the same law
+    as :func:`harris_palmgren_torque` without per-call keyword handling (solver hot path)."""
+    x_s, y_s, inv_cs, zdm, y_hp, c4cot, c5, wreg2 = k
+    fr = abs(f_radial)
+    fa = abs(f_axial)
+    f_s = x_s * fr + y_s * fa
     if f_s < fr:
         f_s = fr
     if f_s <= 0.0:
         return 0.0
-    f1 = z_hp * (f_s / C_s) ** y_hp
-    ar = radians(a)
-    f_beta = c4 * fa * cos(ar) / sin(ar) + c5 * fr
+    f_beta = c4cot * fa + c5 * fr
     if f_beta < fr:
         f_beta = fr
-    return -f1 * f_beta * d_m * omega_race_rel / sqrt(omega_race_rel * omega_race_rel
-                                                      + omega_reg * omega_reg)
+    return -zdm * (f_s * inv_cs) ** y_hp * f_beta * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + wreg2)
