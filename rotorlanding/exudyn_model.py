@@ -88,8 +88,14 @@ class PreStep:
         self.progress = None
         self.var = exu.OutputVariableType.Coordinates_t
         self.updates = 0
+        self.tilts = []  # (list [alpha, beta] read by a bearing closure, row alpha, row beta, n_lat)
 
     def __call__(self, mbs, t) -> bool:
+        if self.tilts:
+            q = mbs.systemData.GetODE2Coordinates()
+            for holder, ra, rb, n in self.tilts:
+                holder[0] = float(ra @ q[:n])
+                holder[1] = float(rb @ q[:n])
         if self.enabled:
             omega = mbs.GetNodeOutput(self.node, self.var)[0]
             if self.omega is None or abs(omega - self.omega) > GYRO_UPDATE_TOL * max(abs(self.omega), 1.0):
@@ -179,12 +185,13 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
                                         nodeNumber=race))
         outer = point(i + 3)
         mbs.AddObject(ObjectMassPoint2D(mass=p.outer_race_mass, nodeNumber=outer))
-        lay = bearing_layout(spec, b)
-        if lay["full_lateral"]:
-            lat = lateral_nodes
-        else:
-            lat = [station_nodes[spec.stations.index(b.station)]]
-        fb = bearing_forces(spec, b)
+        tilt = None
+        if p.axial_face and spec.scenario.effects["axial_rub"]:
+            tilt = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
+            pre.tilts.append((tilt, b.tilt_alpha, b.tilt_beta, spec.n_lat))
+        lay = bearing_layout(spec, b, tilt is not None)
+        lat = [station_nodes[spec.stations.index(b.station)]]
+        fb = bearing_forces(spec, b, tilt)
 
         def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
             return fb(t, q, q_t)

@@ -141,7 +141,7 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
                 al = float(b.tilt_alpha @ qk[:n_lat])
                 be = float(b.tilt_beta @ qk[:n_lat])
                 ry_, rz_, _, _, prub = axial_rub(dy, dz, dvy, dvz, omega[k], wi, al, be, abs(x[k]) - a.cl_ax, n_ax,
-                                                 1.0 if x[k] >= 0 else -1.0, c.mu_ax, c.v_reg, p.face_inner_radius,
+                                                 1.0 if x[k] >= 0 else -1.0, c.mu_ax, c.v_reg_axial, p.face_inner_radius,
                                                  p.face_outer_radius)
                 cols["rub_force_y_n"][k], cols["rub_force_z_n"][k] = ry_, rz_
                 power["axial_rub"][k] += prub

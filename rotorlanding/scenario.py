@@ -86,7 +86,8 @@ class Contact:
     k_visc: float       # s/m, Hunt-Crossley: F = k_hertz delta^e (1 + k_visc/k_hertz ... ) see user_forces
     mu_rad: float       # -
     mu_ax: float        # -
-    v_reg: float        # m/s, friction regularisation velocity
+    v_reg: float        # m/s, friction regularisation velocity (radial contact, ribbon sign, eq 30)
+    v_reg_axial: float  # m/s, regularisation of the axial-face friction (eqs 19-20)
 
 
 @dataclass(frozen=True)
@@ -227,7 +228,8 @@ def _scenario(data: dict, source, name) -> Scenario:
         raise InputError("contact.exponent", exponent, "must lie in [1, 2] (1 linear, 10/9 line, 1.5 point contact)")
     contact = Contact(c.number("k_hertz", positive=True), exponent,
                       c.number("k_visc", 0.0, nonnegative=True), c.number("mu_rad", nonnegative=True),
-                      c.number("mu_ax", nonnegative=True), c.number("v_reg", 1e-3, positive=True))
+                      c.number("mu_ax", nonnegative=True), c.number("v_reg", 1e-3, positive=True),
+                      c.number("v_reg_axial", 1e-2, positive=True))
     c.finish()
 
     a = top.table("axial")
