@@ -237,6 +237,9 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
     import exudyn as exu
 
     ss = settings.apply(exu, t_start, t_end)
+    # Exudyn warns on stdout about per-step allocations of Python user functions (expected here);
+    # our own progress and summary are the user-facing output
+    exu.SuppressWarnings(True)
     wall0 = time.perf_counter()
     ok, msg = True, ""
     try:
