@@ -103,9 +103,15 @@ class LandingSpec:
                 for b in self.bearings}
 
     def initial_state(self) -> tuple[np.ndarray, np.ndarray]:
-        """Rotor centred (levitated) at speed, races at rest and centred, axial at 0."""
+        """Levitated start: sleeves centred (held by the AMBs), the rotor's static sag between
+        them in the modal coordinates (Craig-Bampton K is block-diagonal, so the modal part of
+        K q = f_g decouples), spin at speed, races at rest and centred, axial at 0."""
         q0 = np.zeros(self.n)
         v0 = np.zeros(self.n)
+        nb = 2 * len(self.stations)
+        if self.n_lat > nb:
+            km = self.K[nb:self.n_lat, nb:self.n_lat]
+            q0[nb:self.n_lat] = np.linalg.solve(km, self.f_gravity[nb:self.n_lat])
         v0[self.i_theta] = self.scenario.omega0
         return q0, v0
 

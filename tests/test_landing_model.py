@@ -100,3 +100,22 @@ def test_hunt_crossley_restitution(e_target):
     sol = solve_ivp(rhs, (0, 0.01), [-cl, -v_in], events=leave, rtol=1e-10, atol=1e-14, max_step=1e-6)
     e = sol.y[1, -1] / v_in
     assert (1 - e) == pytest.approx(1 - e_target, rel=0.12)
+
+
+def test_amb_hold_then_drop_with_unbalance():
+    """Levitated by the PD AMBs until t_drop (unbalance gives a forward 1x orbit), then it lands."""
+    sc = _scenario(amb__t_drop=0.12, operating__t_end=0.15, effects__unbalance=True,
+                   unbalance={"station": "thrust_disk", "magnitude": 2e-4, "phase_deg": 0.0})
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"]
+    de = spec.bearings[0]
+    s = de.i_station
+    hold = (t > 0.02) & (t < 0.12)
+    assert np.max(np.hypot(q[hold, s], q[hold, s + 1])) < 0.25 * de.params.clearance  # levitated
+    # synchronous components of w = y + i z: forward (e^{+i Omega t}) dominates backward
+    w = q[hold, s] + 1j * q[hold, s + 1]
+    w = w - w.mean()
+    ph = np.exp(1j * v[hold, spec.i_theta] * t[hold])
+    fwd, bwd = abs(np.mean(w / ph)), abs(np.mean(w * ph))
+    assert fwd > 5 * bwd and fwd > 1e-7
+    assert np.min(q[t > 0.135, s + 1]) < -0.9 * de.params.clearance  # landed after the drop
