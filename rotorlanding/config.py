@@ -63,8 +63,10 @@ def parse_value(text: str):
         return text
 
 
-def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True) -> None:
-    """Set ``data['a']['b'] = value`` for ``'a.b'``; unknown keys are an error when ``must_exist``."""
+def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True, create_leaf: bool = False) -> None:
+    """Set ``data['a']['b'] = value`` for ``'a.b'``; unknown keys are an error when ``must_exist``
+    (with ``create_leaf`` a missing last key inside an existing table is created; the schema
+    validation then accepts it if it is a known optional field and names it otherwise)."""
     parts = dotted_key.split(".")
     node = data
     for i, part in enumerate(parts[:-1]):
@@ -73,7 +75,7 @@ def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True) -
                 raise InputError(dotted_key, value, f"no such key '{'.'.join(parts[: i + 1])}' in the input")
             node.setdefault(part, {})
         node = node[part]
-    if not isinstance(node, dict) or (must_exist and parts[-1] not in node):
+    if not isinstance(node, dict) or (must_exist and not create_leaf and parts[-1] not in node):
         raise InputError(dotted_key, value, "no such key in the input")
     node[parts[-1]] = value
 

@@ -33,13 +33,14 @@ class SolverSettings:
     spectral_radius: float
     modified_newton: bool
     output_period: float
-    newton_relative_tolerance: float = 1e-8
-    newton_absolute_tolerance: float = 1e-10
+    newton_relative_tolerance: float = 1e-6
+    newton_absolute_tolerance: float = 1e-8
 
     @classmethod
     def from_spec(cls, spec: LandingSpec) -> "SolverSettings":
         s = spec.scenario.solver
-        return cls(s.step, s.spectral_radius, s.modified_newton, s.output_period)
+        return cls(s.step, s.spectral_radius, s.modified_newton, s.output_period, s.newton_relative_tolerance,
+                   s.newton_absolute_tolerance)
 
     def apply(self, exu, t_start: float, t_end: float):
         ss = exu.SimulationSettings()

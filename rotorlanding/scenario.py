@@ -135,6 +135,8 @@ class Solver:
     spectral_radius: float
     modified_newton: bool
     output_period: float  # s
+    newton_relative_tolerance: float = 1e-6
+    newton_absolute_tolerance: float = 1e-8
 
 
 @dataclass
@@ -283,7 +285,9 @@ def _scenario(data: dict, source, name) -> Scenario:
 
     sv = top.table("solver", {})
     solver = Solver(sv.number("step", 1e-5, positive=True), sv.number("spectral_radius", 0.8),
-                    sv.boolean("modified_newton", True), sv.number("output_period", 1e-4, positive=True))
+                    sv.boolean("modified_newton", True), sv.number("output_period", 1e-4, positive=True),
+                    sv.number("newton_relative_tolerance", 1e-6, positive=True),
+                    sv.number("newton_absolute_tolerance", 1e-8, positive=True))
     sv.finish()
     if not 0.0 <= solver.spectral_radius <= 1.0:
         raise InputError("solver.spectral_radius", solver.spectral_radius, "must lie in [0, 1]")
@@ -311,7 +315,7 @@ def load_scenario(path, overrides: list[str] | None = None) -> Scenario:
         try:
             # effects may be absent from the file yet are known switches with defaults
             set_dotted(data, key, parse_value(text.strip()),
-                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS))
+                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
         except InputError as err:
             raise InputError(f"--set {key}", text.strip(), err.allowed) from None
     return scenario_from_dict(data, source=str(path))
