@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forces import bearing_forces, bearing_layout, rotor_forces, rotor_loads_need_lateral
+from .forces import BEARING_LOCAL, bearing_forces, rotor_forces, rotor_loads_need_lateral
 from .landing import LandingSpec
 
 
@@ -190,14 +190,13 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
         if p.axial_face and spec.scenario.effects["axial_rub"]:
             tilt = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
             pre.tilts.append((tilt, b.tilt_alpha, b.tilt_beta, spec.n_lat))
-        lay = bearing_layout(spec, b, tilt is not None)
         lat = [station_nodes[spec.stations.index(b.station)]]
         fb = bearing_forces(spec, b, tilt)
 
         def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
             return fb(t, q, q_t)
 
-        n = lay["n"]
+        n = len(BEARING_LOCAL)
         mbs.AddObject(ObjectGenericODE2(nodeNumbers=lat + [spin_node, race, outer], massMatrix=np.zeros((n, n)),
                                         stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
                                         forceVector=[0.0] * n, forceUserFunction=bearing_uf))

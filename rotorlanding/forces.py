@@ -12,10 +12,9 @@ Local coordinates
 rotor loads:    [lateral (n_lat) | theta, x_ax], or only [theta, x_ax] when no load acts on the
                 lateral coordinates (no AMB during the run, no unbalance, gyroscopics elsewhere):
                 see :func:`rotor_loads_need_lateral`
-bearing object: [lateral block | theta, x_ax | race_y, race_z, race_phi | outer_y, outer_z]
-where the lateral block is only the bearing's station (y, z) unless the bearing carries the
-axial face with axial rub on, in which case it is the whole lateral vector (the rotor tilt at
-the face comes from the Craig-Bampton rows of alpha and beta).
+bearing object: [station y, z | theta, x_ax | race_y, race_z, race_phi | outer_y, outer_z]
+                (``BEARING_LOCAL``); the rotor tilt at an axial face comes in through a holder
+                updated once per step.
 """
 
 from __future__ import annotations
@@ -131,32 +130,23 @@ def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True)
     return f
 
 
-def bearing_layout(spec: LandingSpec, b: BearingSpec, lagged_tilt: bool = False) -> dict:
-    """Local indices of a bearing object's coordinates (see module docstring)."""
-    full_lateral = b.params.axial_face and spec.scenario.effects["axial_rub"] and not lagged_tilt
-    n_lat_local = spec.n_lat if full_lateral else 2
-    s = b.i_station if full_lateral else 0
-    return {"full_lateral": full_lateral, "n_lat": n_lat_local, "sy": s, "sz": s + 1,
-            "th": n_lat_local, "ax": n_lat_local + 1, "ry": n_lat_local + 2, "rz": n_lat_local + 3,
-            "rp": n_lat_local + 4, "oy": n_lat_local + 5, "oz": n_lat_local + 6, "n": n_lat_local + 7}
+BEARING_LOCAL = ("station_y", "station_z", "theta", "x_axial", "race_y", "race_z", "race_phi", "outer_y", "outer_z")
 
 
 def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     """Closure for one catcher bearing: radial contact, axial rub, balls, drag, ribbon, friction.
 
-    ``tilt``: optional 2-list [alpha, beta] of the rotor tilt at the station, kept up to date by
-    the caller once per time step (lagged tilt). The tilt only shapes the face pressure field and
-    changes little within a step; taking it from the start of the step keeps the bearing object
-    at 9 local coordinates instead of the whole rotor, which makes its numerical Jacobian 2.5x
-    cheaper. Without it the tilt is computed from the Craig-Bampton rows inside the call."""
+    Local coordinates: ``BEARING_LOCAL`` (9). ``tilt`` is a 2-list [alpha, beta] of the rotor tilt
+    at the station that the caller keeps up to date once per time step (needed only by the
+    bearing with the axial face when axial rub is on). The tilt only shapes the face pressure
+    field and changes little within a step; reading it from the start of the step keeps this
+    object at 9 coordinates instead of the whole rotor, which makes its numerical Jacobian 2.5x
+    cheaper."""
     sc = spec.scenario
     eff = sc.effects
     p = b.params
     c = sc.contact
-    lay = bearing_layout(spec, b, tilt is not None)
-    n = lay["n"]
-    sy, sz, th, ax = lay["sy"], lay["sz"], lay["th"], lay["ax"]
-    ry, rz, rp, oy, oz = lay["ry"], lay["rz"], lay["rp"], lay["oy"], lay["oz"]
+    a = sc.axial
     clearance, r_rot, r_race = p.clearance, p.sleeve_radius, p.race_radius
     kh, ex, v_reg = c.k_hertz, c.exponent, c.v_reg
     kv = c.k_visc if eff["contact_damping"] else 0.0
@@ -172,57 +162,37 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     ci, co = p.inner_race_damping, p.outer_race_damping
     wi, wo = -p.inner_race_mass * G_ACC, -p.outer_race_mass * G_ACC
     face = p.axial_face
-    rub = b.params.axial_face and eff["axial_rub"]
-    full = lay["full_lateral"]
-    if rub:
-        ta = b.tilt_alpha.tolist()
-        tb = b.tilt_beta.tolist()
-        nl = spec.n_lat
-        mu_ax, r1, r2, v_reg_ax = c.mu_ax, p.face_inner_radius, p.face_outer_radius, c.v_reg_axial
-        cl_ax = sc.axial.cl_ax
-    fax = axial_law(spec)
+    rub = face and eff["axial_rub"]
+    if rub and tilt is None:
+        raise ValueError(f"bearing {b.name}: axial rub needs the tilt holder")
+    mu_ax, r1, r2, v_reg_ax = c.mu_ax, p.face_inner_radius, p.face_outer_radius, c.v_reg_axial
+    cl_ax, dm, kcb, kws, khs, cax = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
 
     def f(t, q, v):
-        out = [0.0] * n
-        dy, dz = q[sy] - q[ry], q[sz] - q[rz]
-        dvy, dvz = v[sy] - v[ry], v[sz] - v[rz]
-        omega, omega_i = v[th], v[rp]
-        fy, fz, t_rot, t_race = radial_contact(dy, dz, dvy, dvz, omega, omega_i, clearance, kh, ex, kv, mu,
-                                               v_reg, r_rot, r_race)[:4]
-        f_ax = abs(fax(q[ax], v[ax])) if face else 0.0
+        sy, sz, _, x, ry, rz, _, oy, oz = q
+        vsy, vsz, omega, xd, vry, vrz, omega_i, voy, voz = v
+        dy, dz = sy - ry, sz - rz
+        dvy, dvz = vsy - vry, vsz - vrz
+        fy, fz, t_rot, t_race, _, _, _, _ = radial_contact(dy, dz, dvy, dvz, omega, omega_i, clearance, kh, ex, kv,
+                                                           mu, v_reg, r_rot, r_race)
+        f_ax = abs(axial_force(x, xd, cl_ax, dm, kcb, kws, khs, cax)) if face else 0.0
         if rub and f_ax > 0.0:
-            x = q[ax]
-            if full:
-                alpha = beta = 0.0
-                for k in range(nl):
-                    alpha += ta[k] * q[k]
-                    beta += tb[k] * q[k]
-            else:
-                alpha, beta = tilt
-            ry_, rz_, trr, tri = axial_rub(dy, dz, dvy, dvz, omega, omega_i, alpha, beta, abs(x) - cl_ax, f_ax,
-                                           1.0 if x >= 0 else -1.0, mu_ax, v_reg_ax, r1, r2)[:4]
-            fy += ry_
-            fz += rz_
-            t_rot += trr
-            t_race += tri
-        out[sy] = fy
-        out[sz] = fz
-        out[th] = t_rot
+            gy, gz, gr, gi, _ = axial_rub(dy, dz, dvy, dvz, omega, omega_i, tilt[0], tilt[1], abs(x) - cl_ax, f_ax,
+                                          1.0 if x >= 0 else -1.0, mu_ax, v_reg_ax, r1, r2)
+            fy += gy
+            fz += gz
+            t_rot += gr
+            t_race += gi
         # balls: force on the inner race from r = inner - outer
-        by, bz = ball_force(q[ry] - q[oy], q[rz] - q[oz], kb1, kb2, v[ry] - v[oy], v[rz] - v[oz], cb)
+        by, bz = ball_force(ry - oy, rz - oz, kb1, kb2, vry - voy, vrz - voz, cb)
         if drag:
-            f_rad = math.hypot(by, bz)
-            t_race += harris_palmgren_fast(omega_i, f_rad, f_ax, hp)
-        out[ry] = -fy + by - ci * v[ry]
-        out[rz] = -fz + bz - ci * v[rz] + wi
-        out[rp] = t_race
-        gy, gz = ribbon_force(q[oy], q[oz], v[oy], v[oz], krib, crib, eta, v_reg)
+            t_race += harris_palmgren_fast(omega_i, math.hypot(by, bz), f_ax, hp)
+        hy, hz = ribbon_force(oy, oz, voy, voz, krib, crib, eta, v_reg)
         if coulomb and f_ax > 0.0:
-            hy, hz = outer_race_friction(v[oy], v[oz], f_ax, mu_d, v_reg)
-            gy += hy
-            gz += hz
-        out[oy] = -by + gy - co * v[oy]
-        out[oz] = -bz + gz - co * v[oz] + wo
-        return out
+            ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)
+            hy += ky
+            hz += kz
+        return [fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + wi, t_race,
+                -by + hy - co * voy, -bz + hz - co * voz + wo]
 
     return f
