@@ -154,6 +154,19 @@ def cmd_run(args) -> int:
     return 0
 
 
+def cmd_validate(args) -> int:
+    from .validate import validate
+
+    if args.workers < 1:
+        raise InputError("--workers", args.workers, "must be >= 1")
+    res = validate(args.out, quick=args.quick, workers=args.workers)
+    ev = res["evaluation"]
+    for c in ev["checks"]:
+        print(f"{'PASS' if c['pass'] else 'FAIL'}  {c['check']}: {c.get('ours')}  ({c['rule']})")
+    print(f"{ev['passed']} of {ev['total']} acceptance checks pass; report: {args.out}/validation.md")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -179,6 +192,12 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--no-plots", action="store_true", help="skip the figures")
     u.add_argument("--quiet", action="store_true", help="no progress bar")
     u.set_defaults(func=cmd_run)
+
+    va = sub.add_parser("validate", help="run the paper's landings and write the validation report")
+    va.add_argument("--out", default="validation", help="output folder (default ./validation)")
+    va.add_argument("--quick", action="store_true", help=f"0.5 s runs (no docs/validation.md update)")
+    va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
+    va.set_defaults(func=cmd_validate)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")
