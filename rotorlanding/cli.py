@@ -167,6 +167,14 @@ def cmd_validate(args) -> int:
     return 0
 
 
+def cmd_animate(args) -> int:
+    from .animate import animate
+
+    info = animate(args.results, args.out, fps=args.fps, view=args.view, max_frames=args.max_frames)
+    print(f"{info['frames']} frames written to {info['file']} (displacements x{info['magnification']:.0f})")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -198,6 +206,14 @@ def build_parser() -> argparse.ArgumentParser:
     va.add_argument("--quick", action="store_true", help=f"0.5 s runs (no docs/validation.md update)")
     va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
     va.set_defaults(func=cmd_validate)
+
+    an = sub.add_parser("animate", help="render a results.h5 offline with Exudyn's raytracer into a GIF")
+    an.add_argument("results", help="results.h5 of a rotorlanding run")
+    an.add_argument("--out", default="landing.gif", help="GIF file (default landing.gif)")
+    an.add_argument("--fps", type=float, default=20.0, help="frames per simulated second (default 20)")
+    an.add_argument("--view", default="DE", help="DE, NDE (bearing along the axis) or rotor (side view)")
+    an.add_argument("--max-frames", type=int, default=None, help="cap on the number of frames")
+    an.set_defaults(func=cmd_animate)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")
