@@ -175,6 +175,21 @@ def cmd_animate(args) -> int:
     return 0
 
 
+def cmd_sweep(args) -> int:
+    from .sweep import run_sweep
+
+    if args.workers < 1:
+        raise InputError("--workers", args.workers, "must be >= 1")
+    rows = run_sweep(args.sweep, args.out, workers=args.workers, scheduler=args.scheduler)
+    failed = [r for r in rows if r["status"] != "ok"]
+    skipped = sum(1 for r in rows if r.get("skipped"))
+    print(f"{len(rows)} cases ({skipped} already done), {len(failed)} failed; table: {args.out}/sweep.csv, "
+          f"map: {args.out}/whirl_map.png")
+    for r in failed:
+        print(f"  case {r['case']}: {r['status']}: {r['error']}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -214,6 +229,13 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("--view", default="DE", help="DE, NDE (bearing along the axis) or rotor (side view)")
     an.add_argument("--max-frames", type=int, default=None, help="cap on the number of frames")
     an.set_defaults(func=cmd_animate)
+
+    sw = sub.add_parser("sweep", help="run a grid / Monte Carlo sweep of scenario values in parallel")
+    sw.add_argument("sweep", help="sweep TOML file")
+    sw.add_argument("--out", default="sweep", help="output folder (default ./sweep)")
+    sw.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    sw.add_argument("--scheduler", default=None, help="Dask scheduler address (tcp://host:8786)")
+    sw.set_defaults(func=cmd_sweep)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")

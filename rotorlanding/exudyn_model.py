@@ -239,7 +239,7 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
     ss = settings.apply(exu, t_start, t_end)
     # Exudyn warns on stdout about per-step allocations of Python user functions (expected here);
     # our own progress and summary are the user-facing output
-    exu.SuppressWarnings(True)
+    exu.config.suppressWarnings = True
     wall0 = time.perf_counter()
     ok, msg = True, ""
     try:
