@@ -66,10 +66,14 @@ def parse_value(text: str):
 def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True, create_leaf: bool = False) -> None:
     """Set ``data['a']['b'] = value`` for ``'a.b'``; unknown keys are an error when ``must_exist``
     (with ``create_leaf`` a missing last key inside an existing table is created; the schema
-    validation then accepts it if it is a known optional field and names it otherwise)."""
+    validation then accepts it if it is a known optional field and names it otherwise).
+    A numeric part indexes an array of tables: ``rotor.sections.3.outer_diameter``."""
     parts = dotted_key.split(".")
     node = data
     for i, part in enumerate(parts[:-1]):
+        if isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+            continue
         if not isinstance(node, dict) or part not in node:
             if must_exist:
                 raise InputError(dotted_key, value, f"no such key '{'.'.join(parts[: i + 1])}' in the input")
