@@ -240,6 +240,8 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
     # Exudyn warns on stdout about per-step allocations of Python user functions (expected here);
     # our own progress and summary are the user-facing output
     exu.config.suppressWarnings = True
+    console = exu.config.printToConsole
+    exu.config.printToConsole = False
     wall0 = time.perf_counter()
     ok, msg = True, ""
     try:
@@ -248,6 +250,8 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
             ok, msg = False, "Exudyn solver did not converge"
     except Exception as exc:  # Exudyn raises RuntimeError/ValueError on divergence
         ok, msg = False, f"{type(exc).__name__}: {str(exc).strip().splitlines()[-1] if str(exc).strip() else ''}"
+    finally:
+        exu.config.printToConsole = console
     wall = time.perf_counter() - wall0
     it = model.mbs.sys["dynamicSolver"].it
     stats = {"wall_s": wall, "steps": int(it.currentStepIndex), "newton_iterations": int(it.newtonStepsCount),
