@@ -14,7 +14,6 @@ radius (the factor is written on every frame). ``rotor`` — side view of the ro
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
@@ -164,5 +163,3 @@ def animate(results_path, out_path, *, fps: float = 20.0, view: str = "DE", max_
     images[0].save(out_path, save_all=True, append_images=images[1:], duration=int(1000 / fps), loop=0)
     return {"frames": len(images), "file": str(out_path), "magnification": mag}
 
-
-__all__ = ["animate", "VIEWS", "math"]

@@ -218,7 +218,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     va = sub.add_parser("validate", help="run the paper's landings and write the validation report")
     va.add_argument("--out", default="validation", help="output folder (default ./validation)")
-    va.add_argument("--quick", action="store_true", help=f"0.5 s runs (no docs/validation.md update)")
+    va.add_argument("--quick", action="store_true", help="0.5 s runs (no docs/validation.md update)")
     va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
     va.set_defaults(func=cmd_validate)
 

@@ -27,7 +27,6 @@ rotor at the station of bearing b, T_b its torque on the rotor.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -144,5 +143,4 @@ def build_spec(scenario: Scenario) -> LandingSpec:
                        fe.mass, fe.polar_inertia, i_theta, i_axial, bearings, unb, amb_rows, names)
 
 
-G_ACC = GRAVITY
-__all__ = ["LandingSpec", "BearingSpec", "build_spec", "G_ACC", "math"]
+G_ACC = GRAVITY  # m/s^2, re-exported for the force closures

@@ -9,12 +9,10 @@ non-zero.
 from __future__ import annotations
 
 import json
-import math
 import sys
 import time
 from pathlib import Path
 
-import numpy as np
 
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
@@ -141,5 +139,3 @@ def format_summary(summary: dict) -> str:
                      f"({p['wall_s_per_simulated_s']:.2f} s/s), {p['steps']} steps")
     return "\n".join(lines)
 
-
-__all__ = ["run_scenario", "simulate", "format_summary", "math", "np"]

@@ -12,8 +12,7 @@ in ``docs/scenario_file.md``::
     [unbalance]        optional unbalance
     [effects]          switches of the physical effects (model-gap workflow toggles them)
     [operating]        speed_rpm, t_end
-    [solver]           time step and generalized-alpha settings
-    [output]           sampling of the stored time series
+    [solver]           time step, generalized-alpha and Newton settings, output sampling
 
 Every effect has an "off" variant selected by ``[effects]``; names are listed in ``EFFECTS``.
 """
@@ -22,7 +21,7 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .config import Table, load_toml, parse_value, set_dotted

@@ -10,11 +10,9 @@ its rule; "pass" is computed, never typed.
 from __future__ import annotations
 
 import json
-import math
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 PAPER_DIR = ROOT / "scenarios" / "paper"
@@ -249,5 +247,3 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
         (ROOT / "docs" / "validation.md").write_text(md)
     return result
 
-
-__all__ = ["validate", "evaluate_cases", "PAPER", "CASES", "math", "np"]

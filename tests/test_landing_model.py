@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 from rotorlanding.config import load_toml
-from rotorlanding.landing import build_spec
 from rotorlanding.postprocess import evaluate, summarize
 from rotorlanding.run import simulate
 from rotorlanding.scenario import scenario_from_dict

@@ -8,7 +8,7 @@ from rotorlanding.reduction import full_model
 from rotorlanding.rotor import rotor_from_dict
 from rotorlanding.timoshenko import assemble, cowper_shear_coefficient, element_matrices, plane_matrices
 
-from helpers import STEEL, uniform_shaft
+from helpers import STEEL
 
 L, E, G, RHO, A, I, KAPPA = 0.13, 2.1e11, 8.1e10, 7850.0, 2.8e-3, 6.2e-7, 0.85
 
