@@ -1,0 +1,137 @@
+"""Measured landing data in: CSV, HDF5 (our own results.h5 counts as data), MATLAB .mat, and a
+feature-level table (TOML/JSON) as rig reports and papers give. First piece of the model-gap
+workflow (issue 5).
+
+Channel names carry their unit (SI unless named): ``time_s`` and any subset of::
+
+    DE_y_m, DE_z_m, NDE_y_m, NDE_z_m               journal displacement (y horizontal, z up)
+    rotor_speed_rpm, DE_inner_race_speed_rpm, NDE_inner_race_speed_rpm
+    axial_m                                        rotor axial position
+    DE_force_y_n, DE_force_z_n, NDE_force_y_n, NDE_force_z_n   contact force on the rotor
+
+Channels may have different sampling (NaN where a channel has no sample), missing channels are
+fine, and the drop instant is aligned by ``time_offset_s`` (the time of the drop in the file's
+clock, subtracted) or detected from the vertical displacement (:func:`detect_drop`).
+"""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .errors import InputError
+
+CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm",
+            "NDE_inner_race_speed_rpm", "axial_m", "DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n")
+
+#: results.h5 series -> measurement channel (forces: contact + axial-rub force on the rotor)
+_FROM_RESULTS = {"DE_y_m": "DE_y_m", "DE_z_m": "DE_z_m", "NDE_y_m": "NDE_y_m", "NDE_z_m": "NDE_z_m",
+                 "rotor_speed_rpm": "rotor_speed_rpm", "DE_race_speed_rpm": "DE_inner_race_speed_rpm",
+                 "NDE_race_speed_rpm": "NDE_inner_race_speed_rpm", "axial_position_m": "axial_m"}
+
+
+@dataclass
+class Measurement:
+    """Time series per channel, each with its own valid samples: channel -> (t [s], values)."""
+
+    channels: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    features: dict = field(default_factory=dict)  # feature-level data (measured features)
+    source: str = ""
+
+    def has(self, name: str) -> bool:
+        return name in self.channels
+
+    def series(self, name: str):
+        return self.channels[name]
+
+    def shifted(self, dt: float) -> "Measurement":
+        return Measurement({k: (t - dt, v) for k, (t, v) in self.channels.items()}, dict(self.features), self.source)
+
+
+def _from_columns(cols: dict[str, np.ndarray], source: str) -> Measurement:
+    if "time_s" not in cols:
+        raise InputError("time_s", None, "missing time column (channel names carry units, e.g. time_s, DE_y_m)",
+                         file=source)
+    t = np.asarray(cols["time_s"], float).ravel()
+    m = Measurement(source=source)
+    for name, val in cols.items():
+        if name == "time_s":
+            continue
+        if name not in CHANNELS:
+            raise InputError(name, "column", f"unknown channel; allowed: time_s, {', '.join(CHANNELS)}", file=source)
+        v = np.asarray(val, float).ravel()
+        if v.shape != t.shape:
+            raise InputError(name, f"{v.size} samples", f"must have as many samples as time_s ({t.size})", file=source)
+        ok = np.isfinite(v) & np.isfinite(t)
+        if ok.sum() >= 2:
+            order = np.argsort(t[ok])
+            m.channels[name] = (t[ok][order], v[ok][order])
+    if not m.channels:
+        raise InputError("channels", "none", "the file holds no channel with at least 2 valid samples", file=source)
+    return m
+
+
+def load_measurement(path, *, time_offset_s: float = 0.0) -> Measurement:
+    """Read measured data; ``time_offset_s`` (the drop instant in the file's clock) is subtracted."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("--measured", str(path), "file not found")
+    suffix = path.suffix.lower()
+    if suffix == ".csv":
+        with open(path, newline="") as fh:
+            header = fh.readline().strip().split(",")
+        names = [h.strip() for h in header]
+        try:
+            data = np.genfromtxt(path, delimiter=",", skip_header=1, dtype=float, ndmin=2)
+        except ValueError as exc:
+            raise InputError("(csv)", str(exc).splitlines()[0], "numbers separated by commas", file=str(path)) from None
+        if data.shape[1] != len(names):
+            raise InputError("(csv)", f"{data.shape[1]} columns", f"header names {len(names)}", file=str(path))
+        m = _from_columns({n: data[:, i] for i, n in enumerate(names)}, str(path))
+    elif suffix == ".mat":
+        from scipy.io import loadmat
+
+        raw = loadmat(path)
+        m = _from_columns({k: v for k, v in raw.items() if not k.startswith("__")}, str(path))
+    elif suffix in (".h5", ".hdf5"):
+        from .results import read_results
+
+        res = read_results(path)
+        cols = {"time_s": res["time_s"]}
+        for src, dst in _FROM_RESULTS.items():
+            if src in res["series"]:
+                cols[dst] = res["series"][src]
+        for b in ("DE", "NDE"):
+            if f"{b}_contact_force_y_n" in res["series"]:
+                for ax in ("y", "z"):
+                    cols[f"{b}_force_{ax}_n"] = res["series"][f"{b}_contact_force_{ax}_n"] + \
+                        res["series"][f"{b}_rub_force_{ax}_n"]
+        m = _from_columns(cols, str(path))
+    elif suffix in (".toml", ".json"):
+        data = tomllib.loads(path.read_text()) if suffix == ".toml" else json.loads(path.read_text())
+        if "features" not in data or not isinstance(data["features"], dict):
+            raise InputError("features", None, "a feature table needs a [features] table", file=str(path))
+        return Measurement(features=data["features"], source=str(path))
+    else:
+        raise InputError("--measured", str(path), "must be .csv, .mat, .h5 or a .toml/.json feature table")
+    return m.shifted(time_offset_s) if time_offset_s else m
+
+
+def detect_drop(m: Measurement, clearance: float, bearing: str = "DE") -> float | None:
+    """Drop instant: last time before the journal first falls below -clearance/2 at which it was
+    still within 2 % of the clearance of its initial level (the start of the fall)."""
+    name = f"{bearing}_z_m"
+    if not m.has(name):
+        return None
+    t, z = m.series(name)
+    z0 = float(np.median(z[: max(3, len(z) // 50)]))
+    below = np.nonzero(z < z0 - 0.5 * clearance)[0]
+    if not below.size:
+        return None
+    k = below[0]
+    still = np.nonzero(np.abs(z[:k] - z0) <= 0.02 * clearance)[0]
+    return float(t[still[-1]]) if still.size else float(t[0])

@@ -1,0 +1,98 @@
+"""Measured data in (CSV, .mat, results.h5, feature tables) and discrepancy features / gap."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.errors import InputError
+from rotorlanding.features import extract_features, gap
+from rotorlanding.measured import Measurement, detect_drop, load_measurement
+
+C = 2e-4
+
+
+def _synthetic(f_whirl=65.0, onset=0.4, t_end=1.2, fs=5000.0, drop_at=0.0, sense=1.0):
+    t = np.arange(0, t_end, 1 / fs)
+    y = np.zeros_like(t)
+    z = np.where(t < drop_at, 0.0, -C)
+    on = t >= drop_at + onset
+    ph = sense * 2 * np.pi * f_whirl * (t[on] - drop_at - onset)
+    y[on], z[on] = C * np.cos(ph - np.pi / 2), C * np.sin(ph - np.pi / 2)
+    rotor = 7000 - 100 * np.clip(t - drop_at, 0, None)
+    race = np.minimum(rotor, 30000 * np.clip(t - drop_at, 0, None))
+    return t, y, z, rotor, race
+
+
+def test_csv_with_offset_different_sampling_noise_and_missing_channel(tmp_path):
+    t, y, z, rotor, race = _synthetic(drop_at=0.3)
+    rng = np.random.default_rng(0)
+    z_noisy = z + rng.normal(0, 0.03 * C, z.size)
+    speed = np.full_like(t, np.nan)
+    speed[::10] = rotor[::10]  # slower speed channel
+    f = tmp_path / "rig.csv"
+    np.savetxt(f, np.column_stack([t + 12.0, y, z_noisy, speed]), delimiter=",",
+               header="time_s,DE_y_m,DE_z_m,rotor_speed_rpm", comments="")
+    m = load_measurement(f, time_offset_s=12.0)
+    assert set(m.channels) == {"DE_y_m", "DE_z_m", "rotor_speed_rpm"}
+    assert len(m.series("rotor_speed_rpm")[0]) == pytest.approx(len(t) / 10, abs=1)
+    assert detect_drop(m, C) == pytest.approx(0.3, abs=2e-3)
+    feats = extract_features(m, clearance=C, t_drop=0.3)
+    assert feats["whirl_direction"][0] == "forward"
+    assert feats["whirl_frequency_hz"][0] == pytest.approx(65.0, abs=0.5)
+    assert feats["whirl_onset_s"][0] == pytest.approx(0.4, abs=0.03)
+    assert feats["rotor_deceleration_rpm_s"][0] == pytest.approx(100.0, rel=0.05)
+
+
+def test_gap_is_zero_for_itself_and_grows_with_the_difference():
+    t, y, z, rotor, race = _synthetic()
+    base = Measurement({"DE_y_m": (t, y), "DE_z_m": (t, z), "rotor_speed_rpm": (t, rotor),
+                        "DE_inner_race_speed_rpm": (t, race)})
+    fa = extract_features(base, clearance=C)
+    g0, rows = gap(fa, fa)
+    assert g0 == 0.0 and len(rows) >= 8
+    gaps = []
+    for f_w in (60.0, 50.0):
+        t2, y2, z2, *_ = _synthetic(f_whirl=f_w)
+        other = Measurement({"DE_y_m": (t2, y2), "DE_z_m": (t2, z2), "rotor_speed_rpm": (t, rotor),
+                             "DE_inner_race_speed_rpm": (t, race)})
+        gaps.append(gap(fa, extract_features(other, clearance=C))[0])
+    assert 0 < gaps[0] < gaps[1]
+    # a backward whirl: the direction mismatch dominates, frequencies are not compared
+    t3, y3, z3, *_ = _synthetic(sense=-1.0)
+    back = Measurement({"DE_y_m": (t3, y3), "DE_z_m": (t3, z3), "rotor_speed_rpm": (t, rotor)})
+    fb = extract_features(back, clearance=C)
+    assert fb["whirl_direction"][0] == "backward"
+    g, rows = gap(fa, fb)
+    assert "whirl_frequency_hz" not in [r["feature"] for r in rows] and g >= 3.0 / np.sqrt(len(rows))
+
+
+def test_mat_and_feature_table_and_bad_files(tmp_path):
+    from scipy.io import savemat
+
+    t, y, z, rotor, race = _synthetic()
+    savemat(tmp_path / "d.mat", {"time_s": t, "DE_y_m": y, "DE_z_m": z})
+    m = load_measurement(tmp_path / "d.mat")
+    assert m.has("DE_z_m") and not m.has("rotor_speed_rpm")
+    (tmp_path / "f.json").write_text(json.dumps({"features": {"whirl_frequency_hz": 65.0}}))
+    assert load_measurement(tmp_path / "f.json").features["whirl_frequency_hz"] == 65.0
+    (tmp_path / "bad.csv").write_text("time_s,DE_q_m\n0,1\n1,2\n")
+    with pytest.raises(InputError, match="DE_q_m"):
+        load_measurement(tmp_path / "bad.csv")
+    with pytest.raises(InputError, match="file not found"):
+        load_measurement(tmp_path / "none.csv")
+
+
+def test_results_file_is_measured_data(tmp_path):
+    from rotorlanding.cli import main
+
+    root = Path(__file__).resolve().parents[1]
+    out = tmp_path / "r"
+    assert main(["run", str(root / "scenarios" / "landing_7000rpm.toml"), "--out", str(out), "--t-end", "0.05",
+                 "--quiet", "--no-plots"]) == 0
+    m = load_measurement(out / "results.h5")
+    assert {"DE_y_m", "DE_z_m", "rotor_speed_rpm", "DE_force_z_n", "axial_m"} <= set(m.channels)
+    assert detect_drop(m, C) == pytest.approx(0.0, abs=1e-3)
+    f = extract_features(m, clearance=C)
+    assert f["DE_vertical_min_m"][0] < -0.9 * C and f["DE_force_peak_n"][0] > 500
