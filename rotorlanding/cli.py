@@ -190,6 +190,35 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def cmd_diagnose(args) -> int:
+    from pathlib import Path
+
+    from .diagnose import diagnose
+    from .features import extract_features
+    from .measured import detect_drop, load_measurement
+    from .scenario import load_scenario
+
+    sc = load_scenario(args.scenario)
+    clearance = sc.bearings["DE"].clearance if "DE" in sc.bearings else next(iter(sc.bearings.values())).clearance
+    m = load_measurement(args.measured, time_offset_s=args.time_offset_s or 0.0)
+    if m.features:
+        meas = {k: (v, None) for k, v in m.features.items()}
+    else:
+        t_drop = detect_drop(m, clearance) if args.time_offset_s is None else 0.0
+        meas = extract_features(m.shifted(t_drop or 0.0), clearance=clearance, t_drop=0.0)
+    cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
+    res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,
+                   workers=args.workers)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "report.json").write_text(json.dumps(res, indent=2, default=float))
+    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']}")
+    for n in res["named_effects"]:
+        print(f"  {n}: {res['signatures'][n]}")
+    print(f"report: {out}/report.json")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -236,6 +265,17 @@ def build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     sw.add_argument("--scheduler", default=None, help="Dask scheduler address (tcp://host:8786)")
     sw.set_defaults(func=cmd_sweep)
+
+    dg = sub.add_parser("diagnose", help="find the missing effect that explains a model-measurement gap")
+    dg.add_argument("--measured", required=True, help="CSV, .mat, results.h5 or a feature table (.toml/.json)")
+    dg.add_argument("--scenario", required=True, help="the model as it is (scenario TOML)")
+    dg.add_argument("--out", default="diagnosis")
+    dg.add_argument("--candidates", default=None, help="comma-separated effect names (default: every effect off)")
+    dg.add_argument("--max-effects", type=int, default=1)
+    dg.add_argument("--workers", type=int, default=2)
+    dg.add_argument("--time-offset-s", type=float, default=None,
+                    help="drop instant in the data's clock (default: detected from the vertical displacement)")
+    dg.set_defaults(func=cmd_diagnose)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")
