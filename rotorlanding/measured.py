@@ -122,8 +122,11 @@ def load_measurement(path, *, time_offset_s: float = 0.0) -> Measurement:
 
 
 def detect_drop(m: Measurement, clearance: float, bearing: str = "DE") -> float | None:
-    """Drop instant: last time before the journal first falls below -clearance/2 at which it was
-    still within 2 % of the clearance of its initial level (the start of the fall)."""
+    """Drop instant from the free fall of the journal: while it falls from 5 % to 50 % of the
+    clearance below its levitated level, z = z0 - g (t - t_drop)^2 / 2, so each such sample gives
+    t_drop = t - sqrt(2 (z0 - z) / g); the median is robust to sensor noise."""
+    from .timoshenko import GRAVITY
+
     name = f"{bearing}_z_m"
     if not m.has(name):
         return None
@@ -133,5 +136,12 @@ def detect_drop(m: Measurement, clearance: float, bearing: str = "DE") -> float 
     if not below.size:
         return None
     k = below[0]
-    still = np.nonzero(np.abs(z[:k] - z0) <= 0.02 * clearance)[0]
-    return float(t[still[-1]]) if still.size else float(t[0])
+    fall = np.arange(k + 1)
+    fall = fall[(z0 - z[fall] >= 0.05 * clearance)]
+    # keep the contiguous fall just before the first crossing of 50 %
+    if fall.size == 0:
+        return float(t[k])
+    brk = np.nonzero(np.diff(fall) > 1)[0]
+    fall = fall[brk[-1] + 1:] if brk.size else fall
+    est = t[fall] - np.sqrt(2.0 * (z0 - z[fall]) / GRAVITY)
+    return float(np.median(est))

@@ -56,3 +56,24 @@ def test_cli_with_csv_data(model_without_windage, tmp_path, capsys):
     rep = json.loads((out / "report.json").read_text())
     assert rep["named_effect"] == "windage"
     assert "windage" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("hidden, value", [("windage", 1.2e-6), ("ball_drag", 1.5e-2)])
+def test_similar_signatures_told_apart(tmp_path, hidden, value):
+    """Windage (rotor) and ball drag (inner races) both slow things down; the model lacks both."""
+    from rotorlanding.benchdata import make_hidden_effect_data
+    from rotorlanding.features import extract_features
+    from rotorlanding.measured import detect_drop, load_measurement
+
+    model = tmp_path / "model.toml"
+    model.write_text(f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}"]\n'
+                     '[effects]\nwindage = false\nball_drag = false\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    truth = make_hidden_effect_data(model, hidden, tmp_path / "rig.csv", seed=3, value=value, drop_channel="NDE_y_m")
+    m = load_measurement(tmp_path / "rig.csv")
+    assert not m.has("NDE_y_m")
+    t_drop = detect_drop(m, C)
+    assert t_drop == pytest.approx(truth["drop_at_s"], abs=2e-3)
+    feats = extract_features(m.shifted(t_drop), clearance=C)
+    res = diagnose(feats, model, clearance=C, candidates=["windage", "ball_drag"], workers=2, maxiter=8)
+    assert res["named_effect"] == hidden, res["steps"]
+    assert res["gap_after"] <= 0.5 * res["gap_before"]

@@ -16,7 +16,8 @@ C = 2e-4
 def _synthetic(f_whirl=65.0, onset=0.4, t_end=1.2, fs=5000.0, drop_at=0.0, sense=1.0):
     t = np.arange(0, t_end, 1 / fs)
     y = np.zeros_like(t)
-    z = np.where(t < drop_at, 0.0, -C)
+    # levitated, then free fall onto the race (z = -g t^2 / 2 until the clearance is used up)
+    z = np.maximum(-0.5 * 9.80665 * np.clip(t - drop_at, 0, None) ** 2, -C)
     on = t >= drop_at + onset
     ph = sense * 2 * np.pi * f_whirl * (t[on] - drop_at - onset)
     y[on], z[on] = C * np.cos(ph - np.pi / 2), C * np.sin(ph - np.pi / 2)
