@@ -77,3 +77,27 @@ def test_similar_signatures_told_apart(tmp_path, hidden, value):
     res = diagnose(feats, model, clearance=C, candidates=["windage", "ball_drag"], workers=2, maxiter=8)
     assert res["named_effect"] == hidden, res["steps"]
     assert res["gap_after"] <= 0.5 * res["gap_before"]
+
+
+@pytest.mark.parametrize("hidden, value, thrust", [
+    ("ribbon_cross_coupling", 0.4, False),
+    ("radial_friction", 0.3, False),
+    ("axial_rub", 0.3, True),
+    ("outer_race_coulomb", 0.3, True),
+])
+def test_more_hidden_effects_named(tmp_path, hidden, value, thrust):
+    """With windage and ball drag above: six effects recovered from noisy, resampled, shifted data."""
+    from rotorlanding.benchdata import make_hidden_effect_data
+    from rotorlanding.features import extract_features
+    from rotorlanding.measured import detect_drop, load_measurement
+
+    model = tmp_path / "model.toml"
+    extra = "[axial]\nf_thrust = 4000.0\n[amb]\ndrop_axial = true\n" if thrust else ""
+    model.write_text(f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}"]\n[effects]\n{hidden} = false\n'
+                     f'[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n' + extra)
+    make_hidden_effect_data(model, hidden, tmp_path / "rig.csv", seed=1, value=value)
+    m = load_measurement(tmp_path / "rig.csv")
+    feats = extract_features(m.shifted(detect_drop(m, C)), clearance=C)
+    res = diagnose(feats, model, clearance=C, workers=2, maxiter=8)
+    assert res["named_effect"] == hidden, res["steps"]
+    assert res["gap_after"] <= 0.5 * res["gap_before"]
