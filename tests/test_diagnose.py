@@ -101,3 +101,20 @@ def test_more_hidden_effects_named(tmp_path, hidden, value, thrust):
     res = diagnose(feats, model, clearance=C, workers=2, maxiter=8)
     assert res["named_effect"] == hidden, res["steps"]
     assert res["gap_after"] <= 0.5 * res["gap_before"]
+
+
+def test_two_missing_effects_found_with_max_effects_2(tmp_path):
+    from rotorlanding.benchdata import make_hidden_effect_data
+    from rotorlanding.features import extract_features
+    from rotorlanding.measured import detect_drop, load_measurement
+
+    model = tmp_path / "model.toml"
+    model.write_text(f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}"]\n[effects]\nwindage = false\n'
+                     'ribbon_cross_coupling = false\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    make_hidden_effect_data(model, "windage", tmp_path / "rig.csv", seed=2, value=1.2e-6,
+                            extra=["effects.ribbon_cross_coupling=true", "bearings.DE.eta=0.4", "bearings.NDE.eta=0.4"])
+    m = load_measurement(tmp_path / "rig.csv")
+    feats = extract_features(m.shifted(detect_drop(m, C)), clearance=C)
+    res = diagnose(feats, model, clearance=C, workers=2, maxiter=8, max_effects=2)
+    assert set(res["named_effects"]) == {"windage", "ribbon_cross_coupling"}
+    assert res["gap_after"] <= 0.5 * res["gap_before"]
