@@ -193,7 +193,7 @@ def cmd_sweep(args) -> int:
 def cmd_diagnose(args) -> int:
     from pathlib import Path
 
-    from .diagnose import diagnose
+    from .diagnose import diagnose, write_report
     from .features import extract_features
     from .measured import detect_drop, load_measurement
     from .scenario import load_scenario
@@ -204,18 +204,25 @@ def cmd_diagnose(args) -> int:
     if m.features:
         meas = {k: (v, None) for k, v in m.features.items()}
     else:
+        for name, (_, v) in m.channels.items():
+            if name.endswith("_m") and name != "axial_m" and np.nanmax(np.abs(v)) > 5 * clearance:
+                raise InputError(name, f"{np.nanmax(np.abs(v)):.3g} m", f"journal displacements beyond 5x the model's "
+                                 f"clearance ({clearance:g} m): data from a different rotor, or not in metres?",
+                                 file=args.measured)
         t_drop = detect_drop(m, clearance) if args.time_offset_s is None else 0.0
-        meas = extract_features(m.shifted(t_drop or 0.0), clearance=clearance, t_drop=0.0)
+        m = m.shifted(t_drop or 0.0)
+        meas = extract_features(m, clearance=clearance, t_drop=0.0)
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
     res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,
                    workers=args.workers)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "report.json").write_text(json.dumps(res, indent=2, default=float))
+    write_report(res, out, None if m.features else m, args.scenario, clearance)
     print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']}")
     for n in res["named_effects"]:
         print(f"  {n}: {res['signatures'][n]}")
-    print(f"report: {out}/report.json")
+    print(f"report: {out}/report.json, {out}/report.md, {out}/overlay.png")
     return 0
 
 

@@ -29,7 +29,7 @@ from .measured import Measurement
 NOISE_GAP = 0.3
 
 
-def _simulate_features(scenario_path, overrides, clearance):
+def _simulate_features(scenario_path, overrides, clearance, *, with_series=False):
     from .postprocess import evaluate
     from .run import simulate
     from .scenario import load_scenario
@@ -46,7 +46,77 @@ def _simulate_features(scenario_path, overrides, clearance):
         chans[f"{b.name}_inner_race_speed_rpm"] = (t, series[f"{b.name}_race_speed_rpm"])
     chans["rotor_speed_rpm"] = (t, series["rotor_speed_rpm"])
     chans["axial_m"] = (t, series["axial_position_m"])
-    return extract_features(Measurement(chans), clearance=clearance, t_drop=sc.amb.t_drop)
+    feats = extract_features(Measurement(chans), clearance=clearance, t_drop=sc.amb.t_drop)
+    return (feats, Measurement(chans)) if with_series else feats
+
+
+def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path, clearance: float) -> list[str]:
+    """report.md and overlay.png: measured vs model before vs after, spectrum, feature table."""
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .whirl import full_spectrum
+
+    out = Path(out_dir)
+    _, before = _simulate_features(scenario_path, [], clearance, with_series=True)
+    _, after = _simulate_features(scenario_path, res["calibrated_overrides"], clearance, with_series=True)
+    fig, axes = plt.subplots(3, 1, figsize=(9, 10))
+    sets = [("model before", before, "tab:blue"), ("model after", after, "tab:green")]
+    if measured is not None and measured.channels:
+        sets.insert(0, ("measured", measured, "0.55"))
+    for label, m, c in sets:
+        if m.has("DE_z_m"):
+            t, z = m.series("DE_z_m")
+            axes[0].plot(t, z * 1e3, color=c, lw=2.5 if label == "measured" else 0.8, label=label)
+        if m.has("rotor_speed_rpm"):
+            t, sp = m.series("rotor_speed_rpm")
+            axes[1].plot(t, sp, color=c, lw=2.5 if label == "measured" else 0.8, label=label)
+        if m.has("DE_y_m") and m.has("DE_z_m"):
+            t, y = m.series("DE_y_m")
+            z = np.interp(t, *m.series("DE_z_m"))
+            dt = float(np.median(np.diff(t)))
+            tu = np.arange(t[0], t[-1], dt)
+            f, a = full_spectrum(tu, np.interp(tu, t, y), np.interp(tu, t, z))
+            axes[2].plot(f, a * 1e6, color=c, lw=2.5 if label == "measured" else 0.8, label=label)
+    axes[0].set_ylabel("DE vertical [mm]")
+    axes[1].set_ylabel("rotor speed [rpm]")
+    axes[2].set_ylabel("full spectrum DE [um]")
+    axes[2].set_xlabel("frequency [Hz] (negative: backward)")
+    axes[2].set_xlim(-300, 300)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0].set_xlabel("time after the drop [s]")
+    fig.tight_layout()
+    fig.savefig(out / "overlay.png", dpi=110)
+    plt.close(fig)
+    lines = ["# Model-gap diagnosis", "",
+             f"Model: `{scenario_path}`. Gap before: **{res['gap_before']:.3f}**, after: **{res['gap_after']:.3f}**.",
+             ""]
+    if res["named_effect"]:
+        for n in res["named_effects"]:
+            lines.append(f"Named effect: **{n}**. Signature: {res['signatures'][n]}.")
+        lines.append(f"Calibrated: `{' '.join(res['calibrated_overrides'])}`.")
+    else:
+        lines.append("No candidate effect explains the disagreement significantly (null answer).")
+    lines += ["", "## Candidates", "", "| step | effect | gap | parameters | score |", "|---|---|---|---|---|"]
+    for i, stp in enumerate(res["steps"], 1):
+        for c in stp["candidates"]:
+            lines.append(f"| {i} | {c['effect']} | {c['gap']:.3g} | {c['parameters']} | {c['score']:.3g} |")
+    lines += ["", "## Features (distance = |measured - model| / scale)", "",
+              "| feature | measured | before | after | scale | distance before | distance after |", "|---|---|---|---|---|---|---|"]
+    after_rows = {r["feature"]: r for r in res["features_after"]}
+    for r in res["features_before"]:
+        a = after_rows.get(r["feature"], {})
+        lines.append(f"| {r['feature']} | {r['measured']} | {r['simulated']} | {a.get('simulated', '-')} | "
+                     f"{r['scale']} | {r['distance']:.3g} | {a.get('distance', float('nan')):.3g} |")
+    lines += ["", "![overlay](overlay.png)", ""]
+    (out / "report.md").write_text("\n".join(lines))
+    return ["report.md", "overlay.png"]
 
 
 def _param_overrides(param, x):

@@ -56,6 +56,7 @@ def test_cli_with_csv_data(model_without_windage, tmp_path, capsys):
     rep = json.loads((out / "report.json").read_text())
     assert rep["named_effect"] == "windage"
     assert "windage" in capsys.readouterr().out
+    assert (out / "report.md").read_text().count("windage") >= 2 and (out / "overlay.png").stat().st_size > 10000
 
 
 @pytest.mark.parametrize("hidden, value", [("windage", 1.2e-6), ("ball_drag", 1.5e-2)])
