@@ -211,6 +211,10 @@ def cmd_diagnose(args) -> int:
                                  file=args.measured)
         t_drop = detect_drop(m, clearance) if args.time_offset_s is None else 0.0
         m = m.shifted(t_drop or 0.0)
+        span = max(float(t[-1]) for t, _ in m.channels.values())
+        if span < 0.1:
+            raise InputError("time_s", f"{span:.3g} s after the drop", "record too short: need >= 0.1 s after the drop",
+                             file=args.measured)
         meas = extract_features(m, clearance=clearance, t_drop=0.0)
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
     res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,

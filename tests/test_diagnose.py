@@ -119,3 +119,21 @@ def test_two_missing_effects_found_with_max_effects_2(tmp_path):
     res = diagnose(feats, model, clearance=C, workers=2, maxiter=8, max_effects=2)
     assert set(res["named_effects"]) == {"windage", "ribbon_cross_coupling"}
     assert res["gap_after"] <= 0.5 * res["gap_before"]
+
+
+def test_diagnose_bad_data_clear_errors(model_without_windage, tmp_path, capsys):
+    t = np.arange(0, 0.05, 1e-4)
+    short = tmp_path / "short.csv"
+    np.savetxt(short, np.column_stack([t, 0 * t, -C * (t > 0.01)]), delimiter=",", header="time_s,DE_y_m,DE_z_m",
+               comments="")
+    other = tmp_path / "other.csv"
+    t2 = np.arange(0, 0.5, 1e-4)
+    np.savetxt(other, np.column_stack([t2, 0 * t2, -5e-3 * (t2 > 0.01)]), delimiter=",",
+               header="time_s,DE_y_m,DE_z_m", comments="")
+    mm = tmp_path / "mm.csv"
+    mm.write_text("time_s,DE_y_mm\n0,1\n0.1,2\n")
+    for f, word in ((short, "too short"), (other, "different rotor"), (mm, "DE_y_mm")):
+        assert main(["diagnose", "--measured", str(f), "--scenario", str(model_without_windage),
+                     "--out", str(tmp_path / "o")]) == 2
+        err = capsys.readouterr().err
+        assert word in err and "Traceback" not in err and err.count("\n") == 1
