@@ -230,6 +230,18 @@ def cmd_diagnose(args) -> int:
     return 0
 
 
+def cmd_calibrate(args) -> int:
+    from .calibrate import calibrate
+
+    rows = calibrate(args.space, args.out, workers=args.workers)
+    best = rows[0]
+    keys = [k for k in best if "." in k]
+    print(f"{len(rows)} designs; best score {best['score']:.3f} (design {best['design']}); table: "
+          f"{args.out}/calibration.csv")
+    print("best as --set: " + " ".join(f"--set {k}={best[k]!r}" for k in keys))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -287,6 +299,12 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--time-offset-s", type=float, default=None,
                     help="drop instant in the data's clock (default: detected from the vertical displacement)")
     dg.set_defaults(func=cmd_diagnose)
+
+    ca = sub.add_parser("calibrate", help="Monte Carlo search of rig unknowns against the paper's validation data")
+    ca.add_argument("space", help="space TOML: samples, seed, t_end, [ranges]")
+    ca.add_argument("--out", default="calibration")
+    ca.add_argument("--workers", type=int, default=2)
+    ca.set_defaults(func=cmd_calibrate)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")

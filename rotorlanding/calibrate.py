@@ -1,0 +1,135 @@
+"""Re-runnable calibration of the rig's unknown parameters against the paper's validation data
+(``rotorlanding calibrate SPACE.toml``).
+
+A space file lists the unknowns and their ranges (any scenario keys, arrays of tables by index)::
+
+    samples = 40          # Monte Carlo designs
+    seed = 1
+    t_end = 0.8           # s per landing
+    [ranges]
+    "rotor.sections.3.outer_diameter" = {min = 0.035, max = 0.06}
+    "bearings.DE.c_rib" = {min = 1e3, max = 3e4, log = true}
+
+Each design runs the paper's forward-whirl landings at 3000/7000/10000 rpm and the
+backward-whirl landing (scenarios/paper), and is scored by the sum of relative errors against
+the experimental values (Fig. 39 frequencies, Table 1 frequency and onset, Table 2 force), with
+a penalty of 1 for each wrong whirl class. ``OUT/calibration.csv`` lists designs by score; the
+best design's overrides are printed as ``--set`` arguments and TOML lines to paste into
+``scenarios/rig/rig.toml`` (with the reasoning), after which ``rotorlanding validate`` reports.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from .config import Table, load_toml
+from .errors import InputError
+from .validate import PAPER, PAPER_DIR
+
+CASES = {"fw3000": "forward_whirl_3000rpm.toml", "fw7000": "forward_whirl_landing.toml",
+         "fw10000": "forward_whirl_10000rpm.toml", "bw": "backward_whirl_landing.toml"}
+
+
+def load_space(path) -> dict:
+    path = Path(path)
+    data = load_toml(path)
+    try:
+        t = Table(data, "")
+        n = t.integer("samples", 20)
+        seed = t.integer("seed", 1, minimum=0)
+        t_end = t.number("t_end", 0.8, positive=True)
+        ranges = t.raw("ranges")
+        if not isinstance(ranges, dict) or not ranges:
+            raise InputError("ranges", ranges, "give at least one key = {min, max[, log]}")
+        for k, r in ranges.items():
+            if not (isinstance(r, dict) and {"min", "max"} <= set(r) <= {"min", "max", "log"} and r["min"] < r["max"]):
+                raise InputError(f"ranges.{k}", r, "must be {min = a, max = b[, log = true]} with a < b")
+            if r.get("log") and r["min"] <= 0:
+                raise InputError(f"ranges.{k}.min", r["min"], "must be > 0 with log = true")
+        t.finish()
+    except InputError as err:
+        raise err.with_file(str(path)) from None
+    rng = np.random.default_rng(seed)
+    designs = []
+    for _ in range(n):
+        d = {}
+        for k, r in ranges.items():
+            if r.get("log"):
+                d[k] = float(10 ** rng.uniform(math.log10(r["min"]), math.log10(r["max"])))
+            else:
+                d[k] = float(rng.uniform(r["min"], r["max"]))
+        designs.append(d)
+    return {"designs": designs, "t_end": t_end}
+
+
+def _run(job):
+    from .postprocess import evaluate, summarize
+    from .run import simulate
+    from .scenario import load_scenario
+
+    i, case, design, t_end = job
+    sets = [f"{k}={v!r}" for k, v in design.items()] + [f"operating.t_end={t_end}"]
+    try:
+        sc = load_scenario(PAPER_DIR / CASES[case], sets)
+        spec, t, q, v, info = simulate(sc, progress=False)
+        s = summarize(spec, t, evaluate(spec, t, q, v))
+        w = s["whirl"]
+        return i, case, {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
+                         "force_max_n": s["bearings"]["DE"]["vertical_force_range_n"][1], "ok": info["complete"]}
+    except Exception as exc:  # a design that breaks the model scores badly, the search goes on
+        return i, case, {"direction": "failed", "error": str(exc), "ok": False}
+
+
+def score(res: dict) -> tuple[float, dict]:
+    """Sum of relative errors vs the experiments; 1 per wrong whirl class."""
+    parts = {}
+    for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[PAPER["fig39"][k] for k in
+                                                                    ("speed_rpm", "experimental_hz")]):
+        r = res.get(case, {})
+        parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
+    r = res.get("fw7000", {})
+    if r.get("force_max_n"):
+        parts["force"] = min(1.0, abs(r["force_max_n"] / PAPER["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
+    b = res.get("bw", {})
+    t1 = PAPER["table1"]["experimental"]
+    if b.get("direction") == "backward":
+        parts["bw_freq"] = abs(b["frequency_hz"] - t1["frequency_hz"]) / t1["frequency_hz"]
+        parts["bw_onset"] = min(1.0, abs(b["onset_s"] - t1["onset_s"]) / t1["onset_s"])
+    else:
+        parts["bw_freq"] = parts["bw_onset"] = 1.0
+    return float(sum(parts.values())), parts
+
+
+def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
+    sp = load_space(space_path)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    jobs = [(i, c, d, sp["t_end"]) for i, d in enumerate(sp["designs"]) for c in CASES]
+    results: dict[int, dict] = {i: {} for i in range(len(sp["designs"]))}
+    if workers > 1:
+        with ProcessPoolExecutor(workers) as ex:
+            for i, case, r in ex.map(_run, jobs):
+                results[i][case] = r
+    else:
+        for i, case, r in map(_run, jobs):
+            results[i][case] = r
+    rows = []
+    for i, d in enumerate(sp["designs"]):
+        total, parts = score(results[i])
+        rows.append({"design": i, "score": total, **d, **{f"err_{k}": v for k, v in parts.items()},
+                     **{f"{c}_direction": results[i][c].get("direction") for c in CASES},
+                     **{f"{c}_hz": results[i][c].get("frequency_hz") for c in CASES}})
+    rows.sort(key=lambda r: r["score"])
+    with open(out / "calibration.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    (out / "calibration.json").write_text(json.dumps({"space": str(space_path), "designs": rows}, indent=2,
+                                                    default=float))
+    return rows

@@ -1,0 +1,33 @@
+"""Calibration against the paper: scoring rule and a tiny end-to-end run."""
+
+import csv
+
+import pytest
+
+from rotorlanding.calibrate import score
+from rotorlanding.cli import main
+
+
+def test_score_is_zero_at_the_experimental_values_and_penalises_wrong_classes():
+    exact = {"fw3000": {"direction": "forward", "frequency_hz": 48.0},
+             "fw7000": {"direction": "forward", "frequency_hz": 65.0, "force_max_n": 4500.0},
+             "fw10000": {"direction": "forward", "frequency_hz": 77.0},
+             "bw": {"direction": "backward", "frequency_hz": 49.0, "onset_s": 0.4}}
+    assert score(exact)[0] == pytest.approx(0.0)
+    off = dict(exact, fw3000={"direction": "none", "frequency_hz": None})
+    assert score(off)[0] == pytest.approx(1.0)
+    slow = dict(exact, fw7000={"direction": "forward", "frequency_hz": 71.5, "force_max_n": 4500.0})
+    assert score(slow)[0] == pytest.approx(0.1)
+
+
+def test_tiny_calibration_run(tmp_path, capsys):
+    space = tmp_path / "space.toml"
+    space.write_text('samples = 1\nseed = 2\nt_end = 0.15\n[ranges]\n"bearings.DE.c_rib" = {min = 1e3, max = 3e4, log = true}\n')
+    assert main(["calibrate", str(space), "--out", str(tmp_path / "c"), "--workers", "2"]) == 0
+    rows = list(csv.DictReader(open(tmp_path / "c" / "calibration.csv")))
+    assert len(rows) == 1 and 1e3 <= float(rows[0]["bearings.DE.c_rib"]) <= 3e4
+    assert float(rows[0]["score"]) > 0
+    assert "--set bearings.DE.c_rib=" in capsys.readouterr().out
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[ranges]\n"x.y" = {min = 2, max = 1}\n')
+    assert main(["calibrate", str(bad)]) == 2
