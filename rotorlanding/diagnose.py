@@ -6,7 +6,7 @@
      calibrate its parameter within bounds (bounded scalar search on the gap);
   c. rank by a BIC-like score n ln(gap^2) + k ln(n) (n features, k parameters) and name the best
      only if the disagreement is above the noise level (gap_before > NOISE_GAP), the best
-     candidate shrinks it by at least ``min_improvement`` and its score beats the unchanged model
+     candidate shrinks it by at least ``min_improvement`` (30 %) and its score beats the unchanged model
      by more than 2; otherwise report that no candidate explains the disagreement
      (named_effect = null);
   d. ``--max-effects 2`` repeats from the improved model.
@@ -27,6 +27,9 @@ from .measured import Measurement
 #: gaps below this are treated as noise: on clean data (the model against its own resampled,
 #: noisy output) the gap is 0.03-0.1, so a disagreement must exceed 3x that to be explained
 NOISE_GAP = 0.3
+#: a named effect must remove at least this share of the remaining gap; with two missing effects
+#: the first one found can only remove its own part (e.g. 48 % for windage + ribbon cross-coupling)
+MIN_STEP_IMPROVEMENT = 0.3
 
 
 def _simulate_features(scenario_path, overrides, clearance, *, with_series=False):
@@ -161,7 +164,7 @@ def _calibrate_one(name, scenario_path, base_overrides, meas, clearance, maxiter
 
 
 def diagnose(measured: Measurement | dict, scenario_path, *, clearance: float, candidates=None, max_effects: int = 1,
-             min_improvement: float = 0.5, noise_gap: float = NOISE_GAP, workers: int = 2, maxiter: int = 10,
+             min_improvement: float = MIN_STEP_IMPROVEMENT, noise_gap: float = NOISE_GAP, workers: int = 2, maxiter: int = 10,
              t_drop: float = 0.0) -> dict:
     from .scenario import load_scenario
 
