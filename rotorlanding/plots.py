@@ -28,38 +28,33 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     names = list(bearings)
     title = summary.get("scenario", "")
 
-    fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), sharex=True, squeeze=False)
-    for ax, b in zip(axes[:, 0], names):
-        ax.plot(t, series[f"{b}_z_m"] * 1e3, label="vertical z")
-        ax.plot(t, series[f"{b}_y_m"] * 1e3, label="horizontal y", alpha=0.8)
-        c = bearings[b] * 1e3
-        ax.axhline(-c, color="k", ls=":", lw=0.8)
-        ax.axhline(c, color="k", ls=":", lw=0.8)
-        ax.set_ylabel(f"{b} journal [mm]")
-        ax.legend(loc="upper right", fontsize=8)
-        ax.grid(alpha=0.3)
-    axes[-1, 0].set_xlabel("time [s]")
-    fig.suptitle(f"{title}: journal displacement (dotted: +/- radial clearance)")
-    fig.tight_layout()
-    files.append(out / "displacements.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    def time_histories(curves, ylabel, suptitle, fname, band=None):
+        """One panel per bearing: curves(b) -> [(values, label)], optional +/- band (dotted)."""
+        fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), sharex=True, squeeze=False)
+        for ax, b in zip(axes[:, 0], names):
+            for k, (vals, label) in enumerate(curves(b)):
+                ax.plot(t, vals, label=label, alpha=1.0 if k == 0 else 0.8)
+            if band is not None:
+                for sgn in (-1, 1):
+                    ax.axhline(sgn * band(b), color="k", ls=":", lw=0.8)
+            ax.set_ylabel(ylabel.format(b=b))
+            ax.legend(loc="upper right", fontsize=8)
+            ax.grid(alpha=0.3)
+        axes[-1, 0].set_xlabel("time [s]")
+        fig.suptitle(f"{title}: {suptitle}")
+        fig.tight_layout()
+        files.append(out / fname)
+        fig.savefig(files[-1], dpi=110)
+        plt.close(fig)
 
-    fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), sharex=True, squeeze=False)
-    for ax, b in zip(axes[:, 0], names):
-        fz = -(series[f"{b}_contact_force_z_n"] + series[f"{b}_rub_force_z_n"])
-        fy = -(series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"])
-        ax.plot(t, fz * 1e-3, label="vertical (on the race)")
-        ax.plot(t, fy * 1e-3, label="horizontal (on the race)", alpha=0.8)
-        ax.set_ylabel(f"{b} contact force [kN]")
-        ax.legend(loc="upper right", fontsize=8)
-        ax.grid(alpha=0.3)
-    axes[-1, 0].set_xlabel("time [s]")
-    fig.suptitle(f"{title}: sleeve/inner-race contact force")
-    fig.tight_layout()
-    files.append(out / "forces.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    time_histories(lambda b: [(series[f"{b}_z_m"] * 1e3, "vertical z"), (series[f"{b}_y_m"] * 1e3, "horizontal y")],
+                   "{b} journal [mm]", "journal displacement (dotted: +/- radial clearance)", "displacements.png",
+                   band=lambda b: bearings[b] * 1e3)
+    time_histories(lambda b: [(-(series[f"{b}_contact_force_z_n"] + series[f"{b}_rub_force_z_n"]) * 1e-3,
+                               "vertical (on the race)"),
+                              (-(series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"]) * 1e-3,
+                               "horizontal (on the race)")],
+                   "{b} contact force [kN]", "sleeve/inner-race contact force", "forces.png")
 
     fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 5), squeeze=False)
     for ax, b in zip(axes[0], names):
