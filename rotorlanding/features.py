@@ -52,6 +52,13 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
         late = tu > t0 + 0.1
         if late.any():
             f[f"{bearing}_orbit_radius_mean_m"] = (float(np.mean(np.hypot(yu[late], zu[late]))), 0.1 * c)
+        # first bounce: after the first contact (z below -c), the highest point before it falls back
+        hit = np.nonzero(zu < -c)[0]
+        if hit.size:
+            k0 = hit[0]
+            k1 = k0 + int(np.argmin(zu[k0:k0 + max(2, int(0.005 / dt))]))  # deepest point of the first impact
+            after = zu[k1:k1 + max(2, int(0.03 / dt))]
+            f[f"{bearing}_first_rebound_m"] = (float(after.max() - zu[k1]), 0.05 * c)
         f[f"{bearing}_vertical_min_m"] = (float(zu.min()), 0.1 * c)
         f[f"{bearing}_vertical_max_m"] = (float(zu.max()), 0.1 * c)
         f[f"{bearing}_horizontal_min_m"] = (float(yu.min()), 0.1 * c)
