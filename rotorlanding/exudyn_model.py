@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .forces import BEARING_LOCAL, bearing_forces, rotor_forces, rotor_loads_need_lateral
+from .bearing_kernel import bearing_functions
+from .forces import BEARING_LOCAL, bearing_forces, rotor_forces, rotor_loads_jacobian, rotor_loads_need_lateral
 from .landing import LandingSpec
 
 
@@ -108,7 +109,11 @@ class PreStep:
         return True
 
 
-def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
+def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool = True) -> ExudynModel:
+    """The Exudyn system of the landing. ``analytic_jacobian``: compiled bearing connectors with
+    analytic Jacobians (:mod:`rotorlanding.bearing_kernel`) and the analytic Jacobian of the rotor
+    loads; False gives the plain-Python laws with Exudyn's numerical differentiation (slower, for
+    comparison)."""
     import exudyn as exu
     from exudyn.itemInterface import (NodeGenericODE2, NodePoint2D, NodeRigidBody2D, ObjectGenericODE2,
                                       ObjectMassPoint2D, ObjectRigidBody2D, SensorNode)
@@ -169,9 +174,17 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
                                                 stiffnessMatrix=K, dampingMatrix=C, forceVector=fvec.tolist()))
     load_nodes = (lateral_nodes if rotor_loads_need_lateral(spec, False) else []) + [spin_node]
     nl = (spec.n_lat if len(load_nodes) > 1 else 0) + 2
+    extra = {}
+    if analytic_jacobian:
+        jrot = rotor_loads_jacobian(spec, gyroscopic_in_user_function=False)
+
+        def rotor_jac(mbs_, t, item, q, q_t, fq, fv):
+            return jrot(t, q, q_t, fq, fv)
+
+        extra["jacobianUserFunction"] = rotor_jac
     mbs.AddObject(ObjectGenericODE2(nodeNumbers=load_nodes, massMatrix=np.zeros((nl, nl)),
                                     stiffnessMatrix=np.zeros((nl, nl)), dampingMatrix=np.zeros((nl, nl)),
-                                    forceVector=[0.0] * nl, forceUserFunction=rotor_uf))
+                                    forceVector=[0.0] * nl, forceUserFunction=rotor_uf, **extra))
     pre = PreStep(rotor_obj, spin_node, C - (spec.scenario.omega0 * G if gyro else 0.0), G, gyro)
     mbs.SetPreStepUserFunction(pre)
 
@@ -191,15 +204,19 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None) -> ExudynModel:
             tilt = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
             pre.tilts.append((tilt, b.tilt_alpha, b.tilt_beta, spec.n_lat))
         lat = [station_nodes[spec.stations.index(b.station)]]
-        fb = bearing_forces(spec, b, tilt)
+        extra = {}
+        if analytic_jacobian:
+            bearing_uf, extra["jacobianUserFunction"], _ = bearing_functions(spec, b, tilt)
+        else:
+            fb = bearing_forces(spec, b, tilt)
 
-        def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
-            return fb(t, q, q_t)
+            def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
+                return fb(t, q, q_t)
 
         n = len(BEARING_LOCAL)
         mbs.AddObject(ObjectGenericODE2(nodeNumbers=lat + [spin_node, race, outer], massMatrix=np.zeros((n, n)),
                                         stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
-                                        forceVector=[0.0] * n, forceUserFunction=bearing_uf))
+                                        forceVector=[0.0] * n, forceUserFunction=bearing_uf, **extra))
 
     import exudyn as exu  # noqa: F811 (output types)
 

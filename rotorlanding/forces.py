@@ -130,6 +130,76 @@ def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True)
     return f
 
 
+def rotor_loads_jacobian(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True):
+    """Analytic derivatives of :func:`rotor_forces` for Exudyn's ``jacobianUserFunction``:
+    ``jac(t, q, v, fq, fv)`` returns -(fq dF/dq + fv dF/dv) over the same local coordinates
+    (AMB, unbalance, windage, drive, axial contact and AMB; gyroscopics only when in the user
+    function)."""
+    sc = spec.scenario
+    eff = sc.effects
+    n_lat = spec.n_lat
+    G = spec.G if (eff["gyroscopic"] and gyroscopic_in_user_function) else None
+    amb = sc.amb
+    t_drop, k_amb, c_amb = amb.t_drop, amb.stiffness, amb.damping
+    rows = spec.amb_rows
+    kax_amb, cax_amb = amb.axial_stiffness, amb.axial_damping
+    drop_radial, drop_axial = amb.drop_radial, amb.drop_axial
+    unb = spec.unbalance_rows
+    if unb is not None:
+        u_mag = sc.unbalance.magnitude
+        u_phase = math.radians(sc.unbalance.phase_deg)
+        uy, uz = unb
+    wind = eff["windage"]
+    cw1, cw2 = sc.spin.c_w1, sc.spin.c_w2
+    constant_drive = sc.spin.drive == "constant"
+    gain = sc.spin.drive_gain
+    a = sc.axial
+    cl_ax, dm, cax = a.cl_ax, a.delta_m, a.c_ax
+    k1 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_ws)
+    k2 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_h)
+    fax = axial_law(spec)
+    if not rotor_loads_need_lateral(spec, gyroscopic_in_user_function):
+        n_lat = 0
+    n = n_lat + 2
+    i_th, i_ax = n_lat, n_lat + 1
+
+    def jac(t, q, v, fq, fv):
+        Jq = np.zeros((n, n))
+        Jv = np.zeros((n, n))
+        omega = v[i_th]
+        if G is not None:
+            Jv[:n_lat, :n_lat] -= omega * G
+            Jv[:n_lat, i_th] -= G @ np.asarray(v[:n_lat])
+        if n_lat and (t < t_drop or not drop_radial):
+            for iy, iz in rows:
+                Jq[iy, iy] -= k_amb
+                Jq[iz, iz] -= k_amb
+                Jv[iy, iy] -= c_amb
+                Jv[iz, iz] -= c_amb
+        if unb is not None:
+            ang = q[i_th] + u_phase
+            ca, sa = math.cos(ang), math.sin(ang)
+            fu = u_mag * omega * omega
+            Jq[:n_lat, i_th] += fu * (-uy * sa + uz * ca)
+            Jv[:n_lat, i_th] += 2.0 * u_mag * omega * (uy * ca + uz * sa)
+        dt = 0.0
+        if wind:
+            dt -= cw1 + 2.0 * cw2 * abs(omega)
+        if constant_drive:
+            dt -= gain
+        Jv[i_th, i_th] = dt
+        x, xd = q[i_ax], v[i_ax]
+        if fax(x, xd) != 0.0:
+            Jq[i_ax, i_ax] = -(k1 if abs(x) - cl_ax <= dm else k2)
+            Jv[i_ax, i_ax] = -cax
+        if t < t_drop or not drop_axial:
+            Jq[i_ax, i_ax] -= kax_amb
+            Jv[i_ax, i_ax] -= cax_amb
+        return -(fq * Jq + fv * Jv)
+
+    return jac
+
+
 BEARING_LOCAL = ("station_y", "station_z", "theta", "x_axial", "race_y", "race_z", "race_phi", "outer_y", "outer_z")
 
 

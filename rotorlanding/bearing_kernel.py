@@ -1,0 +1,427 @@
+"""Compiled catcher-bearing connector: the laws of :func:`rotorlanding.forces.bearing_forces`
+as one numba function, and its analytic Jacobian for Exudyn's ``jacobianUserFunction``.
+
+Why: Exudyn differentiates Python user functions numerically (about 2 n + 1 calls of the
+9-coordinate bearing function per Jacobian, each crossing the C++/Python boundary). The kernel
+here computes the same forces (the laws of ``user_forces`` compiled unchanged with numba) and
+the 9 x 9 derivatives w.r.t. the local coordinates and velocities in one call:
+
+- radial contact, balls, Harris-Palmgren drag, ribbon, outer-race Coulomb friction, axial
+  force: analytic derivatives of the plain-float laws (chain rule through the local
+  kinematics d = station - race, r = race - outer);
+- axial rub (a 72-point quadrature): central differences of the compiled law w.r.t. its 7
+  kinematic inputs inside the kernel (f_axial enters linearly: exact), i.e. one Python call.
+
+The rotor tilt at the axial face comes from a holder updated once per step (as in
+``bearing_forces``) and is a parameter here, not a coordinate.
+
+Local coordinates (``forces.BEARING_LOCAL``):
+q = [station y, z | theta, x_ax | race y, z, phi | outer y, z], v = their rates.
+
+``tests/test_bearing_jacobian.py`` checks the forces against ``bearing_forces`` and the
+Jacobian against finite differences (free flight, radial contact with slip, face contact with
+full and partial pressure, moving outer race) and against Exudyn's own numerical system
+Jacobian.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from user_forces.axial import axial_force as _axial_force_py
+from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.radial_contact import radial_contact as _radial_contact_py
+
+from .landing import G_ACC, BearingSpec, LandingSpec
+
+OMEGA_REG_HP = 0.1  # rad/s, as forces.OMEGA_REG_HP
+
+_njit = numba.njit(cache=True, fastmath=False)
+_radial_contact = _njit(_radial_contact_py)
+_axial_force = _njit(_axial_force_py)
+_axial_rub = _njit(_axial_rub_py)
+
+# parameter vector layout
+(P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
+ P_YHP, P_C4COT, P_C5, P_WREG2, P_KRIB, P_CRIB, P_ETA, P_COUL, P_MUD, P_CI, P_CO, P_WI, P_WO, P_FACE, P_RUB,
+ P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_SIZE) = range(42)
+
+
+def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
+    """The bearing's law parameters as the kernel's float vector (same choices as bearing_forces)."""
+    from user_forces.ball_bearing import harris_palmgren_constants
+
+    sc = spec.scenario
+    eff = sc.effects
+    p = b.params
+    c = sc.contact
+    a = sc.axial
+    P = np.zeros(P_SIZE)
+    P[P_CL], P[P_RR], P[P_RI] = p.clearance, p.sleeve_radius, p.race_radius
+    P[P_KH], P[P_EX], P[P_VREG] = c.k_hertz, c.exponent, c.v_reg
+    P[P_KV] = c.k_visc if eff["contact_damping"] else 0.0
+    P[P_MU] = c.mu_rad if eff["radial_friction"] else 0.0
+    P[P_KB1], P[P_KB2], P[P_CB] = p.k_b1, p.k_b2, p.c_b
+    P[P_DRAG] = 1.0 if eff["ball_drag"] else 0.0
+    P[P_XS:P_WREG2 + 1] = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter,
+                                                    p.hp_z, p.hp_y, omega_reg=OMEGA_REG_HP)
+    P[P_KRIB], P[P_CRIB] = p.k_rib, p.c_rib
+    P[P_ETA] = p.eta if eff["ribbon_cross_coupling"] else 0.0
+    P[P_COUL] = 1.0 if (eff["outer_race_coulomb"] and p.axial_face) else 0.0
+    P[P_MUD], P[P_CI], P[P_CO] = p.mu_d, p.inner_race_damping, p.outer_race_damping
+    P[P_WI], P[P_WO] = -p.inner_race_mass * G_ACC, -p.outer_race_mass * G_ACC
+    P[P_FACE] = 1.0 if p.axial_face else 0.0
+    P[P_RUB] = 1.0 if (p.axial_face and eff["axial_rub"]) else 0.0
+    P[P_MUAX], P[P_R1], P[P_R2], P[P_VREGAX] = c.mu_ax, p.face_inner_radius, p.face_outer_radius, c.v_reg_axial
+    P[P_CLAX], P[P_DM], P[P_KCB], P[P_KWS], P[P_KHS], P[P_CAX] = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
+    return P
+
+
+@_njit
+def _hp(omi, fr, fa, P):
+    """Harris-Palmgren drag torque (= harris_palmgren_fast) and its derivatives (dfr, dfa, domi)."""
+    fr = abs(fr)
+    fa = abs(fa)
+    xs = P[P_XS]
+    ys = P[P_YS]
+    f_s = xs * fr + ys * fa
+    dsr, dsa = xs, ys
+    if f_s < fr:
+        f_s, dsr, dsa = fr, 1.0, 0.0
+    if f_s <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    f_beta = P[P_C4COT] * fa + P[P_C5] * fr
+    dbr, dba = P[P_C5], P[P_C4COT]
+    if f_beta < fr:
+        f_beta, dbr, dba = fr, 1.0, 0.0
+    m2 = omi * omi + P[P_WREG2]
+    m = math.sqrt(m2)
+    g = omi / m
+    dg = P[P_WREG2] / (m2 * m)
+    A = -P[P_ZDM] * (f_s * P[P_INVCS]) ** P[P_YHP]
+    dA = A * P[P_YHP] / f_s
+    T = A * f_beta * g
+    dT_fr = (dA * dsr * f_beta + A * dbr) * g
+    dT_fa = (dA * dsa * f_beta + A * dba) * g
+    return T, dT_fr, dT_fa, A * f_beta * dg
+
+
+@_njit
+def _axial_force_d(x, xd, P):
+    """axial_force and its derivatives (d/dx, d/dxd)."""
+    f = _axial_force(x, xd, P[P_CLAX], P[P_DM], P[P_KCB], P[P_KWS], P[P_KHS], P[P_CAX])
+    if f == 0.0:
+        return 0.0, 0.0, 0.0
+    cl = P[P_CLAX]
+    e = abs(x) - cl
+    if e <= P[P_DM]:
+        kx = 1.0 / (1.0 / P[P_KCB] + 1.0 / P[P_KWS])
+    else:
+        kx = 1.0 / (1.0 / P[P_KCB] + 1.0 / P[P_KHS])
+    return f, -kx, -P[P_CAX]
+
+
+@_njit
+def _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P):
+    return _axial_rub(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
+                      1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2])
+
+
+@_njit
+def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, vrz, omi, voy, voz, ta, tb):
+    """The 9 local generalized forces of one bearing (= forces.bearing_forces)."""
+    dy = sy - ry
+    dz = sz - rz
+    dvy = vsy - vry
+    dvz = vsz - vrz
+    fy, fz, t_rot, t_race, _, _, _, _ = _radial_contact(dy, dz, dvy, dvz, om, omi, P[P_CL], P[P_KH], P[P_EX],
+                                                        P[P_KV], P[P_MU], P[P_VREG], P[P_RR], P[P_RI])
+    f_ax = 0.0
+    if P[P_FACE] != 0.0:
+        f_ax = abs(_axial_force(x, xd, P[P_CLAX], P[P_DM], P[P_KCB], P[P_KWS], P[P_KHS], P[P_CAX]))
+    if P[P_RUB] != 0.0 and f_ax > 0.0:
+        gy, gz, gr, gi, _ = _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P)
+        fy += gy
+        fz += gz
+        t_rot += gr
+        t_race += gi
+    ey = ry - oy
+    ez = rz - oz
+    k = P[P_KB2] * math.sqrt(ey * ey + ez * ez) + P[P_KB1]
+    by = -k * ey - P[P_CB] * (vry - voy)
+    bz = -k * ez - P[P_CB] * (vrz - voz)
+    if P[P_DRAG] != 0.0:
+        t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
+    # ribbon
+    krib = P[P_KRIB]
+    crib = P[P_CRIB]
+    h = oy * voz - oz * voy
+    vr = P[P_VREG]
+    den = h * h + vr * vr * (oy * oy + oz * oz)
+    ke = 0.0
+    if den > 0.0:
+        ke = krib * P[P_ETA] * h / math.sqrt(den)
+    hy = -crib * voy - krib * oy + ke * oz
+    hz = -crib * voz - krib * oz - ke * oy
+    if P[P_COUL] != 0.0 and f_ax > 0.0:
+        s = -P[P_MUD] * f_ax / math.sqrt(voy * voy + voz * voz + vr * vr)
+        hy += s * voy
+        hz += s * voz
+    ci = P[P_CI]
+    co = P[P_CO]
+    return (fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + P[P_WI], t_race,
+            -by + hy - co * voy, -bz + hz - co * voz + P[P_WO])
+
+
+@_njit
+def _radial_jac(dy, dz, dvy, dvz, om, omi, P, J):
+    """Derivatives of (fy, fz, t_rot, t_race) of the radial contact w.r.t.
+    (dy, dz, dvy, dvz, om, omi) into J[4, 6] (zeros outside contact)."""
+    cl = P[P_CL]
+    dist = math.sqrt(dy * dy + dz * dz)
+    if dist <= cl or dist == 0.0:
+        return
+    ny = dy / dist
+    nz = dz / dist
+    delta = dist - cl
+    ex = P[P_EX]
+    kh = P[P_KH]
+    kv = P[P_KV]
+    rr = P[P_RR]
+    ri = P[P_RI]
+    vn = ny * dvy + nz * dvz
+    v_s = ny * dvz - nz * dvy + om * rr - omi * ri
+    de = delta ** ex
+    fn = de * (kh + kv * vn)
+    if fn <= 0.0:
+        return
+    vreg = P[P_VREG]
+    m2 = v_s * v_s + vreg * vreg
+    m = math.sqrt(m2)
+    s = v_s / m
+    ds = vreg * vreg / (m2 * m)
+    mu = P[P_MU]
+    ff = mu * fn * s
+    # P = (I - n n^T) / dist
+    p00 = (1.0 - ny * ny) / dist
+    p01 = -ny * nz / dist
+    p11 = (1.0 - nz * nz) / dist
+    de1 = ex * delta ** (ex - 1.0) * (kh + kv * vn)
+    # 6 inputs: dy, dz, dvy, dvz, om, omi
+    for j in range(6):
+        dny = 0.0
+        dnz = 0.0
+        ddelta = 0.0
+        dvn = 0.0
+        dvs = 0.0
+        if j == 0:
+            dny, dnz = p00, p01
+            ddelta = ny
+        elif j == 1:
+            dny, dnz = p01, p11
+            ddelta = nz
+        if j < 2:
+            dvn = dny * dvy + dnz * dvz
+            dvs = dny * dvz - dnz * dvy
+        elif j == 2:
+            dvn = ny
+            dvs = -nz
+        elif j == 3:
+            dvn = nz
+            dvs = ny
+        elif j == 4:
+            dvs = rr
+        else:
+            dvs = -ri
+        dfn = de1 * ddelta + de * kv * dvn
+        dff = mu * (dfn * s + fn * ds * dvs)
+        J[0, j] = -dfn * ny - fn * dny + dff * nz + ff * dnz
+        J[1, j] = -dfn * nz - fn * dnz - dff * ny - ff * dny
+        J[2, j] = -rr * dff
+        J[3, j] = ri * dff
+
+
+@_njit
+def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
+    """out[9, 9] = -(fq dF/dq + fv dF/dv) (Exudyn's jacobianUserFunction of a force on the RHS)."""
+    sy, sz, th, x, ry, rz, rphi, oy, oz = q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8]
+    vsy, vsz, om, xd, vry, vrz, omi, voy, voz = v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]
+    Jq = np.zeros((9, 9))
+    Jv = np.zeros((9, 9))
+    dy = sy - ry
+    dz = sz - rz
+    dvy = vsy - vry
+    dvz = vsz - vrz
+    # contact forces on the rotor (fy, fz, t_rot, t_race) w.r.t. (dy, dz, dvy, dvz, om, omi, x, xd)
+    C = np.zeros((4, 8))
+    _radial_jac(dy, dz, dvy, dvz, om, omi, P, C)
+    f_ax = 0.0
+    dfa_x = 0.0
+    dfa_xd = 0.0
+    if P[P_FACE] != 0.0:
+        fa_signed, dfx, dfxd = _axial_force_d(x, xd, P)
+        f_ax = abs(fa_signed)
+        sg = 1.0 if fa_signed > 0.0 else -1.0
+        dfa_x = sg * dfx
+        dfa_xd = sg * dfxd
+    if P[P_RUB] != 0.0 and f_ax > 0.0:
+        base = _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P)
+        inp = np.array([dy, dz, dvy, dvz, om, omi, x])
+        eps = np.array([1e-9, 1e-9, 1e-7, 1e-7, 1e-5, 1e-5, 1e-10])
+        for j in range(7):
+            a = inp.copy()
+            b = inp.copy()
+            a[j] += eps[j]
+            b[j] -= eps[j]
+            ra = _rub(a[0], a[1], a[2], a[3], a[4], a[5], ta, tb, a[6], f_ax, P)
+            rb = _rub(b[0], b[1], b[2], b[3], b[4], b[5], ta, tb, b[6], f_ax, P)
+            for i in range(4):
+                C[i, j] += (ra[i] - rb[i]) / (2.0 * eps[j])
+        # f_ax scales the rub linearly
+        for i in range(4):
+            C[i, 6] += base[i] / f_ax * dfa_x
+            C[i, 7] += base[i] / f_ax * dfa_xd
+    # map (dy, dz, dvy, dvz, om, omi, x, xd) to local coordinates; rows: fy -> 0, fz -> 1, t_rot -> 2,
+    # -fy -> 4, -fz -> 5, t_race -> 6
+    for i in range(4):
+        row = i if i < 3 else 6
+        Jq[row, 0] += C[i, 0]
+        Jq[row, 4] -= C[i, 0]
+        Jq[row, 1] += C[i, 1]
+        Jq[row, 5] -= C[i, 1]
+        Jv[row, 0] += C[i, 2]
+        Jv[row, 4] -= C[i, 2]
+        Jv[row, 1] += C[i, 3]
+        Jv[row, 5] -= C[i, 3]
+        Jv[row, 2] += C[i, 4]
+        Jv[row, 6] += C[i, 5]
+        Jq[row, 3] += C[i, 6]
+        Jv[row, 3] += C[i, 7]
+    for j in range(9):
+        Jq[4, j] = -Jq[0, j]
+        Jq[5, j] = -Jq[1, j]
+        Jv[4, j] = -Jv[0, j]
+        Jv[5, j] = -Jv[1, j]
+    # balls: b = -k(r) e - c_b ev, e = race - outer
+    ey = ry - oy
+    ez = rz - oz
+    r = math.sqrt(ey * ey + ez * ez)
+    kb1 = P[P_KB1]
+    kb2 = P[P_KB2]
+    cb = P[P_CB]
+    k = kb2 * r + kb1
+    by = -k * ey - cb * (vry - voy)
+    bz = -k * ez - cb * (vrz - voz)
+    if r > 0.0:
+        byy = -k - kb2 * ey * ey / r
+        byz = -kb2 * ey * ez / r
+        bzz = -k - kb2 * ez * ez / r
+    else:
+        byy = -kb1
+        byz = 0.0
+        bzz = -kb1
+    # d(by, bz)/d(ey, ez) and d/d(evy, evz) = -cb I
+    Bq = np.array([[byy, byz], [byz, bzz]])
+    for i in range(2):
+        for j in range(2):
+            Jq[4 + i, 4 + j] += Bq[i, j]
+            Jq[4 + i, 7 + j] -= Bq[i, j]
+            Jq[7 + i, 4 + j] -= Bq[i, j]
+            Jq[7 + i, 7 + j] += Bq[i, j]
+        Jv[4 + i, 4 + i] -= cb
+        Jv[4 + i, 7 + i] += cb
+        Jv[7 + i, 4 + i] += cb
+        Jv[7 + i, 7 + i] -= cb
+    if P[P_DRAG] != 0.0:
+        fr = math.sqrt(by * by + bz * bz)
+        _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax, P)
+        Jv[6, 6] += dT_om
+        Jq[6, 3] += dT_fa * dfa_x
+        Jv[6, 3] += dT_fa * dfa_xd
+        if fr > 0.0:
+            gy = dT_fr * by / fr
+            gz = dT_fr * bz / fr
+            for j in range(2):
+                Jq[6, 4 + j] += gy * Bq[0, j] + gz * Bq[1, j]
+                Jq[6, 7 + j] -= gy * Bq[0, j] + gz * Bq[1, j]
+            Jv[6, 4] += -cb * gy
+            Jv[6, 7] += cb * gy
+            Jv[6, 5] += -cb * gz
+            Jv[6, 8] += cb * gz
+    # ribbon on the outer race
+    krib = P[P_KRIB]
+    crib = P[P_CRIB]
+    Jq[7, 7] -= krib
+    Jq[8, 8] -= krib
+    Jv[7, 7] -= crib
+    Jv[8, 8] -= crib
+    h = oy * voz - oz * voy
+    vr = P[P_VREG]
+    den = h * h + vr * vr * (oy * oy + oz * oz)
+    if den > 0.0 and P[P_ETA] != 0.0:
+        S = math.sqrt(den)
+        ke = krib * P[P_ETA] * h / S
+        # d(ke)/d(oy, oz, voy, voz)
+        dh = (voz, -voy, -oz, oy)
+        dd = (2.0 * vr * vr * oy, 2.0 * vr * vr * oz, 0.0, 0.0)
+        for j in range(4):
+            dden = 2.0 * h * dh[j] + dd[j]
+            dke = krib * P[P_ETA] * (dh[j] / S - 0.5 * h * dden / (S * S * S))
+            if j < 2:
+                Jq[7, 7 + j] += dke * oz
+                Jq[8, 7 + j] -= dke * oy
+            else:
+                Jv[7, 5 + j] += dke * oz
+                Jv[8, 5 + j] -= dke * oy
+        Jq[7, 8] += ke
+        Jq[8, 7] -= ke
+    if P[P_COUL] != 0.0 and f_ax > 0.0:
+        m2 = voy * voy + voz * voz + vr * vr
+        m = math.sqrt(m2)
+        s = -P[P_MUD] * f_ax / m
+        Jv[7, 7] += s - s * voy * voy / m2
+        Jv[7, 8] += -s * voy * voz / m2
+        Jv[8, 7] += -s * voz * voy / m2
+        Jv[8, 8] += s - s * voz * voz / m2
+        # d s / d f_ax = s / f_ax
+        Jq[7, 3] += s / f_ax * voy * dfa_x
+        Jv[7, 3] += s / f_ax * voy * dfa_xd
+        Jq[8, 3] += s / f_ax * voz * dfa_x
+        Jv[8, 3] += s / f_ax * voz * dfa_xd
+    # race damping
+    Jv[4, 4] -= P[P_CI]
+    Jv[5, 5] -= P[P_CI]
+    Jv[7, 7] -= P[P_CO]
+    Jv[8, 8] -= P[P_CO]
+    for i in range(9):
+        for j in range(9):
+            out[i, j] = -(fq * Jq[i, j] + fv * Jv[i, j])
+    return out
+
+
+def bearing_functions(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
+    """(force, jacobian) user functions for an Exudyn ObjectGenericODE2 over BEARING_LOCAL."""
+    P = bearing_parameters(spec, b)
+    if P[P_RUB] != 0.0 and tilt is None:
+        raise ValueError(f"bearing {b.name}: axial rub needs the tilt holder")
+    tl = tilt if tilt is not None else [0.0, 0.0]
+    rhs = bearing_rhs
+    jac = bearing_jacobian
+    out = np.zeros((9, 9))
+    asarray = np.asarray
+
+    def force(mbs, t, item, q, q_t):
+        return list(rhs(P, *q, *q_t, tl[0], tl[1]))
+
+    def jacobian(mbs, t, item, q, q_t, fq, fv):
+        return jac(P, asarray(q), asarray(q_t), tl[0], tl[1], fq, fv, out)
+
+    # compile / load from numba's cache now, not inside the timed solve
+    z = [0.0] * 9
+    force(None, 0.0, 0, z, z)
+    jacobian(None, 0.0, 0, z, z, 1.0, 1.0)
+
+    return force, jacobian, P

@@ -1,0 +1,168 @@
+"""Compiled bearing connector and analytic Jacobians (rotorlanding.bearing_kernel,
+forces.rotor_loads_jacobian) against the plain-Python laws and finite differences, and the
+Exudyn system Jacobian with the analytic user Jacobians against Exudyn's numerical one."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.bearing_kernel import bearing_functions
+from rotorlanding.forces import bearing_forces, rotor_forces, rotor_loads_jacobian
+from rotorlanding.landing import build_spec
+from rotorlanding.scenario import load_scenario
+
+ROOT = Path(__file__).resolve().parents[1]
+PAPER = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
+
+
+@pytest.fixture(scope="module")
+def spec():
+    return build_spec(load_scenario(PAPER, ["contact.k_visc=2e4", "bearings.NDE.eta=0.1"]))
+
+
+def _states(spec, b):
+    """(name, q, v, tilt): free flight, radial contact with slip, face contact (full and partial
+    pressure, both faces), rolling/whirling races, outer race at rest."""
+    c = b.params.clearance
+    cl = spec.scenario.axial.cl_ax
+    dm = spec.scenario.axial.delta_m
+    v_roll = [0.02, -0.03, 733.0, 0.004, 0.003, -0.002, 650.0, 0.005, -0.004]
+    return [
+        ("free", [1e-5, 2e-5, 0.3, 0.0, 1e-7, -2e-7, 0.1, 1e-7, -3e-7], [0.01, 0.0, 733.0, 0.0, 0, 0, 0.0, 0, 0],
+         [0.0, 0.0]),
+        ("radial contact", [3e-5, -1.05 * c, 1.0, 0.0, 1e-6, -2e-6, 0.3, 1e-6, -3e-6], v_roll, [0.0, 0.0]),
+        ("face full", [3e-5, -1.04 * c, 1.0, cl + 3e-6, 1e-6, -2e-6, 0.3, 1e-6, -3e-6], v_roll, [2e-5, -3e-5]),
+        ("face partial", [-4e-5, 1.02 * c, 1.0, cl + 2e-6, 1e-6, -2e-6, 0.3, 2e-6, 1e-6], v_roll, [4e-4, -6e-4]),
+        ("face bottomed, -x", [c * 0.7, c * 0.75, 1.0, -(cl + dm + 2e-5), 0.0, 0.0, 0.3, 0.0, 0.0],
+         [0.05, -0.01, 700.0, -0.002, 0.0, 0.0, 10.0, 0.0, 0.0], [-1e-4, 2e-4]),
+        ("rolling contact, small slip", [3e-5, -1.05 * c, 1.0, cl + 3e-6, 1e-6, -2e-6, 0.3, 1e-6, -3e-6],
+         [0.002, -0.003, 733.0, 0.004, 0.0003, -0.0002, 733.0 * b.params.sleeve_radius / b.params.race_radius + 0.01,
+          0.0005, -0.0004], [2e-5, -3e-5]),
+        ("outer race at rest", [3e-5, -1.05 * c, 1.0, cl + 3e-6, 1e-6, -2e-6, 0.3, 1e-6, -3e-6],
+         [0.02, -0.03, 733.0, 0.004, 0.003, -0.002, 650.0, 0.0, 0.0], [2e-5, -3e-5]),
+    ]
+
+
+def _fd(f, q, v, hq, hv):
+    n = len(q)
+    Nq = np.zeros((n, n))
+    Nv = np.zeros((n, n))
+    for j in range(n):
+        a, b = list(q), list(q)
+        a[j] += hq[j]
+        b[j] -= hq[j]
+        Nq[:, j] = (np.array(f(a, v)) - np.array(f(b, v))) / (2 * hq[j])
+        a, b = list(v), list(v)
+        a[j] += hv[j]
+        b[j] -= hv[j]
+        Nv[:, j] = (np.array(f(q, a)) - np.array(f(q, b))) / (2 * hv[j])
+    return Nq, Nv
+
+
+def _close(J, N, rtol, noise=0.0):
+    """Entry-wise agreement relative to the row scale of the reference (each row is one force),
+    plus the round-off of the central differences (``noise``, per column)."""
+    scale = np.abs(N).max(axis=1, keepdims=True)
+    return np.abs(J - N) <= rtol * scale + noise + 1e-300
+
+
+@pytest.mark.parametrize("bname", ["DE", "NDE"])
+def test_bearing_kernel_forces_and_jacobian(spec, bname):
+    b = next(x for x in spec.bearings if x.name == bname)
+    checked_rub = False
+    for name, q, v, tilt in _states(spec, b):
+        holder = list(tilt)
+        fpy = bearing_forces(spec, b, holder)
+        force, jac, _ = bearing_functions(spec, b, holder)
+        r_py = np.array(fpy(0.0, q, v))
+        r_nb = np.array(force(None, 0.0, 0, q, v))
+        np.testing.assert_allclose(r_nb, r_py, rtol=1e-12, atol=1e-9, err_msg=name)
+        Jq = -np.array(jac(None, 0.0, 0, q, v, 1.0, 0.0))
+        Jv = -np.array(jac(None, 0.0, 0, q, v, 0.0, 1.0))
+        # combined factors are the linear combination
+        np.testing.assert_allclose(-np.array(jac(None, 0.0, 0, q, v, 2.0, 3e-3)), 2.0 * Jq + 3e-3 * Jv,
+                                   rtol=1e-12, atol=1e-6)
+        hq = np.full(9, 2e-10)
+        hq[3] = 5e-11
+        hv = np.full(9, 1e-8)
+        hv[2] = hv[6] = 1e-5
+        Nq, Nv = _fd(lambda a, c: fpy(0.0, a, c), q, v, hq, hv)
+        fmax = np.abs(r_py).max()
+        okq, okv = _close(Jq, Nq, 2e-5, 1e-13 * fmax / hq), _close(Jv, Nv, 2e-5, 1e-13 * fmax / hv)
+        assert okq.all(), f"{name}: dF/dq differs at {np.argwhere(~okq).tolist()}\n{Jq}\n{Nq}"
+        assert okv.all(), f"{name}: dF/dv differs at {np.argwhere(~okv).tolist()}\n{Jv}\n{Nv}"
+        if name.startswith("face") and b.params.axial_face:
+            # the axial rub and Coulomb friction make the race forces depend on x_ax
+            assert np.abs(Nq[[0, 1, 2, 6], 3]).max() > 0 and np.abs(Nv[[7, 8], 3]).max() >= 0
+            checked_rub = True
+    assert checked_rub == b.params.axial_face
+
+
+def test_rotor_loads_jacobian():
+    from rotorlanding.config import load_toml
+    from rotorlanding.scenario import scenario_from_dict
+
+    path = ROOT / "scenarios" / "landing_7000rpm.toml"
+    data = load_toml(path)
+    data["unbalance"] = {"station": "DE_sleeve", "magnitude": 2e-4, "phase_deg": 30.0}
+    data.setdefault("effects", {})["unbalance"] = True
+    data["amb"].update(t_drop=0.01, drop_axial=True)
+    data["axial"]["f_thrust"] = 4000.0
+    data["spin"].update(drive="constant", drive_gain=0.3)
+    sc = scenario_from_dict(data, source=str(path))
+    spec = build_spec(sc)
+    for gyro in (False, True):
+        f = rotor_forces(spec, gyroscopic_in_user_function=gyro)
+        jac = rotor_loads_jacobian(spec, gyroscopic_in_user_function=gyro)
+        rng = np.random.default_rng(3)
+        n = spec.n_lat + 2
+        for t, x in [(0.0, 0.0), (0.02, sc.axial.cl_ax + 1e-5), (0.02, -(sc.axial.cl_ax + sc.axial.delta_m + 1e-5))]:
+            q = list(rng.normal(0, 1e-5, n))
+            v = list(rng.normal(0, 1e-3, n))
+            q[-2], v[-2] = 1.3, 733.0
+            q[-1], v[-1] = x, 0.002
+            Jq = -jac(t, q, v, 1.0, 0.0)
+            Jv = -jac(t, q, v, 0.0, 1.0)
+            Nq, Nv = _fd(lambda a, c: f(t, a, c), q, v, [1e-9] * (n - 2) + [1e-6, 1e-11], [1e-7] * (n - 2) + [1e-4, 1e-8])
+            assert _close(Jq, Nq, 1e-5).all(), (t, x)
+            assert _close(Jv, Nv, 1e-5).all(), (t, x)
+
+
+def test_exudyn_system_jacobian_analytic_equals_numerical():
+    """Same model with and without jacobianUserFunction: Exudyn's ODE2 RHS Jacobians agree at a
+    state with radial contact and face contact (checks the sign and scaling convention)."""
+    import exudyn as exu
+
+    from rotorlanding.exudyn_model import SolverSettings, build_exudyn
+
+    spec = build_spec(load_scenario(PAPER))
+    q0, v0 = spec.initial_state()
+    q, v = q0.copy(), v0.copy()
+    for b in spec.bearings:
+        q[b.i_station + 1] = -1.04 * b.params.clearance
+        q[b.i_station] = 2e-5
+        v[b.i_station: b.i_station + 2] = [0.02, -0.01]
+        v[b.i_race + 2] = 500.0
+        v[b.i_race: b.i_race + 2] = [0.003, -0.002]
+        v[b.i_outer: b.i_outer + 2] = [0.001, 0.004]
+        q[b.i_outer: b.i_outer + 2] = [2e-6, -5e-6]  # (the ribbon's cross term is singular at the centre)
+    q[spec.i_axial] = spec.scenario.axial.cl_ax + 5e-6
+    v[spec.i_axial] = 0.003
+    mats = {}
+    for analytic in (False, True):
+        model = build_exudyn(spec, q, v, analytic_jacobian=analytic)
+        for holder, ra, rb, n in model.pre_step.tilts:
+            holder[0], holder[1] = 1e-5, -2e-5
+        ss = SolverSettings.from_spec(spec).apply(exu, 0.0, 0.01)
+        solver = exu.MainSolverImplicitSecondOrder()
+        solver.InitializeSolver(model.mbs, ss)
+        out = []
+        for fq, fv in ((1.0, 0.0), (0.0, 1.0)):
+            solver.ComputeJacobianODE2RHS(model.mbs, scalarFactor_ODE2=fq, scalarFactor_ODE2_t=fv)
+            out.append(np.array(solver.GetSystemJacobian())[: spec.n, : spec.n].copy())
+        mats[analytic] = out
+    for (Jn, Ja) in zip(mats[False], mats[True]):
+        assert np.abs(Jn).max() > 1e4
+        ok = _close(Ja, Jn, 1e-4)
+        assert ok.all(), np.argwhere(~ok).tolist()
