@@ -1,4 +1,4 @@
-"""Command line: ``rotorlanding modes|reduce ...``.
+"""Command line: ``rotorlanding run|coastdown|modes|reduce ...``.
 
 Bad input never shows a traceback: an :class:`InputError` prints one line naming the file, field,
 value and what is allowed, and the exit code is 2.
@@ -144,12 +144,39 @@ def cmd_run(args) -> int:
     overrides = list(args.set or [])
     if args.t_end is not None:
         overrides.append(f"operating.t_end={args.t_end}")
+    if args.scenario.endswith(".toml"):
+        from .config import load_toml
+
+        if "coastdown" in load_toml(args.scenario):
+            raise InputError("coastdown", "[coastdown]", "this is a coast-down scenario: run it with "
+                             f"`rotorlanding coastdown {args.scenario} --out DIR`", file=args.scenario)
     scenario = _load_case(args.scenario, overrides)  # validates everything before writing anything
     summary = run_scenario(scenario, args.out, progress=None if not args.quiet else False, plots=not args.no_plots)
     print(format_summary(summary))
     print(f"results written to {args.out}/ (results.h5, summary.json" + ("" if args.no_plots else ", figures") + ")")
     if not summary.get("complete", True):
         print(f"rotorlanding: run incomplete: {summary.get('message', '')}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def cmd_coastdown(args) -> int:
+    from .coastdown import format_summary, load_coastdown, run_coastdown
+
+    overrides = list(args.set or [])
+    if args.t_end is not None:
+        overrides.append(f"operating.t_end={args.t_end}")
+    scenario, cd = load_coastdown(args.scenario, overrides)  # validates everything before writing anything
+    if args.resume and args.overwrite:
+        raise InputError("--resume", True, "cannot be combined with --overwrite")
+    summary = run_coastdown(scenario, cd, args.out, resume=args.resume, overwrite=args.overwrite,
+                            progress=not args.quiet, plots=not args.no_plots)
+    print(format_summary(summary))
+    print(f"results written to {args.out}/ (results.h5, summary.json" + ("" if args.no_plots else ", coastdown.png")
+          + ")")
+    if not summary.get("complete", True):
+        print(f"rotorlanding: coast-down incomplete: {summary.get('message', summary.get('stop_reason'))}",
+              file=sys.stderr)
         return 1
     return 0
 
@@ -267,6 +294,18 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--no-plots", action="store_true", help="skip the figures")
     u.add_argument("--quiet", action="store_true", help="no progress bar")
     u.set_defaults(func=cmd_run)
+
+    cd = sub.add_parser("coastdown", help="coast-down to rest: chunked, streamed to results.h5, resumable")
+    cd.add_argument("scenario", help="scenario TOML with an optional [coastdown] table (or a coast-down results.h5)")
+    cd.add_argument("--out", default="coastdown", help="output folder (default ./coastdown)")
+    cd.add_argument("--resume", action="store_true", help="continue the run in --out from its last written chunk")
+    cd.add_argument("--overwrite", action="store_true", help="start over even if --out holds an unfinished run")
+    cd.add_argument("--t-end", type=float, default=None, help="override operating.t_end (cap on simulated time) [s]")
+    cd.add_argument("--set", action="append", metavar="KEY=VALUE",
+                    help="override a value, e.g. --set coastdown.stop_speed_rpm=500 (repeatable)")
+    cd.add_argument("--no-plots", action="store_true", help="skip coastdown.png")
+    cd.add_argument("--quiet", action="store_true", help="no progress lines")
+    cd.set_defaults(func=cmd_coastdown)
 
     va = sub.add_parser("validate", help="run the paper's landings and write the validation report")
     va.add_argument("--out", default="validation", help="output folder (default ./validation)")

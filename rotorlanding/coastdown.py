@@ -1,0 +1,672 @@
+"""Coast-down to rest: a landing run for minutes of machine time, streamed to ``results.h5``.
+
+The run is cut into *chunks* of fixed simulated length ``[coastdown] chunk_s``. Every chunk is a
+fresh Exudyn model (:func:`rotorlanding.exudyn_model.build_exudyn` with the chunk's start state)
+solved from the chunk's start time to its end time; its samples are post-processed
+(:func:`rotorlanding.postprocess.evaluate`), decimated where the motion is smooth, appended to
+``results.h5`` and the file is closed again before the next chunk is solved. Only one chunk is
+ever held in memory, so memory does not grow with the run length.
+
+Restart, exact by design
+------------------------
+Each chunk starts from the state *read back from the file*: the restart record
+``/coastdown/restart`` (q, v, the time, the number of finished chunks, the number of committed
+rows) and the last committed row of every cumulative series (dissipated / input energy).
+Nothing else carries over from one chunk to the next: the model is rebuilt, so the tilt holder
+of the axial face is recomputed from q, the gyroscopic damping C + Omega G is set from v by the
+first pre-step, the AMB forces depend on time only, and the generalized-alpha solver starts
+anew (initial accelerations from the equations of motion). Chunk boundaries are
+``t_k = k * chunk_s`` (never accumulated). An uninterrupted run and a run killed and resumed
+(``--resume``) therefore execute the same sequence of solves on bit-identical inputs and end in
+the same final state. Rows written after the last restart record (a run killed while writing)
+are truncated on resume.
+
+Decimation rule (documented in docs/scenario_file.md)
+-----------------------------------------------------
+Exudyn stores states every ``solver.output_period``. A sample is kept in ``results.h5`` if
+(a) it lies in a *fast* phase: within ``decimate_every`` samples of an output interval in which
+a bearing's contact normal force changed faster than ``fast_force_rate_n_s`` or a contact
+opened or closed; or (b) its global sample index ``round(t / output_period)`` is a multiple of
+``decimate_every``; or (c) it is the last sample of a chunk (the restart state). Energy
+integrals are accumulated at the full output rate before decimation, so decimation does not
+degrade them. ``/time_s`` holds the actual times of the kept samples (irregular by design).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import resource
+import sys
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .config import Table, load_toml, parse_value, set_dotted
+from .errors import InputError
+from .postprocess import INPUTS, MECHANISMS, energy_summary, evaluate, uniform
+from .scenario import Scenario, scenario_from_dict
+
+CUMULATIVE_PREFIXES = ("dissipated_", "input_")
+FIELDS = ("stop_speed_rpm", "chunk_s", "decimate_every", "fast_force_rate_n_s")
+H5_ROW_CHUNK = 1024  # HDF5 chunk rows of the resizable datasets
+H5_COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
+
+
+@dataclass(frozen=True)
+class Coastdown:
+    """The ``[coastdown]`` table."""
+
+    stop_speed_rpm: float = 10.0        # rpm: the run ends after the chunk in which |rotor speed| <= this
+    chunk_s: float = 0.1                # s: simulated length of one chunk (one Exudyn solve)
+    decimate_every: int = 10            # -: in smooth phases keep every k-th output sample
+    fast_force_rate_n_s: float = 2.0e5  # N/s: contact-force rate above which samples are kept at full rate
+
+
+def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
+    """Validate the ``[coastdown]`` table against the (already validated) scenario."""
+    t = Table({} if data is None else data, "coastdown")
+    d = Coastdown()
+    stop = t.number("stop_speed_rpm", d.stop_speed_rpm, positive=True)
+    chunk = t.number("chunk_s", d.chunk_s, positive=True)
+    k = t.integer("decimate_every", d.decimate_every, minimum=1)
+    rate = t.number("fast_force_rate_n_s", d.fast_force_rate_n_s, positive=True)
+    t.finish()
+    if stop >= scenario.speed_rpm:
+        raise InputError("coastdown.stop_speed_rpm", stop,
+                         f"must be below operating.speed_rpm ({scenario.speed_rpm:g} rpm)")
+    sv = scenario.solver
+    for name, period in (("solver.step", sv.step), ("solver.output_period", sv.output_period)):
+        n = chunk / period
+        if abs(n - round(n)) > 1e-6 * n:
+            raise InputError("coastdown.chunk_s", chunk, f"must be a whole multiple of {name} ({period:g} s)")
+    if chunk < 20 * sv.output_period or chunk > 10.0:
+        raise InputError("coastdown.chunk_s", chunk, f"must lie in [20 x solver.output_period "
+                         f"({20 * sv.output_period:g} s), 10 s] (chunk samples are held in memory)")
+    if scenario.spin.drive != "coast":
+        raise InputError("spin.drive", scenario.spin.drive, "a coast-down needs drive = 'coast' (no drive torque)")
+    return Coastdown(stop, chunk, k, rate)
+
+
+def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, Coastdown]:
+    """Read a coast-down scenario file (a landing scenario plus an optional ``[coastdown]``
+    table), apply ``--set key=value`` overrides, validate both parts."""
+    from .scenario import EFFECTS
+
+    path = Path(path)
+    if path.suffix == ".h5":
+        data = _stored_input(path)
+    else:
+        try:
+            data = load_toml(path)
+        except InputError as err:
+            raise err.with_file(str(path)) from None
+    for item in overrides or []:
+        if "=" not in item:
+            raise InputError("--set", item, "must look like dotted.key=value")
+        key, text = item.split("=", 1)
+        key = key.strip()
+        if key.startswith("coastdown."):
+            if key[10:] not in FIELDS:
+                raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(FIELDS)}")
+            data.setdefault("coastdown", {})
+        try:
+            set_dotted(data, key, parse_value(text.strip()),
+                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
+        except InputError as err:
+            raise InputError(f"--set {key}", text.strip(), err.allowed) from None
+    cd_raw = data.pop("coastdown", None)
+    scenario = scenario_from_dict(data, source=str(path))
+    try:
+        cd = coastdown_from_dict(cd_raw, scenario)
+    except InputError as err:
+        raise err.with_file(str(path)) from None
+    return scenario, cd
+
+
+def _stored_input(path: Path) -> dict:
+    import h5py
+
+    if not path.is_file():
+        raise InputError("file", str(path), "file not found")
+    with h5py.File(path, "r") as h5:
+        data = json.loads(h5["scenario_json"][()])
+        if "coastdown_json" in h5:
+            data["coastdown"] = json.loads(h5["coastdown_json"][()])
+    return data
+
+
+# --------------------------------------------------------------------------------------------
+# decimation
+
+def normal_forces(spec, q: np.ndarray, v: np.ndarray) -> list[np.ndarray]:
+    """Contact normal force of each bearing at every sample, vectorised (the law of
+    user_forces.radial_contact: F_N = delta^e (k_hertz + k_visc delta'), >= 0)."""
+    c = spec.scenario.contact
+    kv = c.k_visc if spec.scenario.effects["contact_damping"] else 0.0
+    out = []
+    for b in spec.bearings:
+        s, r = b.i_station, b.i_race
+        dy, dz = q[:, s] - q[:, r], q[:, s + 1] - q[:, r + 1]
+        dvy, dvz = v[:, s] - v[:, r], v[:, s + 1] - v[:, r + 1]
+        dist = np.hypot(dy, dz)
+        delta = np.maximum(dist - b.params.clearance, 0.0)
+        rate = (dy * dvy + dz * dvz) / np.maximum(dist, 1e-300)
+        out.append(np.maximum(delta ** c.exponent * (c.k_hertz + kv * rate), 0.0))
+    return out
+
+
+def keep_mask(t: np.ndarray, forces: list[np.ndarray], cd: Coastdown, output_period: float) -> tuple:
+    """Samples of one chunk to keep (see the module docstring); returns (mask, fast mask)."""
+    n = len(t)
+    fast_iv = np.zeros(max(n - 1, 0), bool)
+    dt = np.maximum(np.diff(t), 1e-15)
+    for f in forces:
+        fast_iv |= np.abs(np.diff(f)) / dt > cd.fast_force_rate_n_s
+        fast_iv |= (f[1:] > 0) != (f[:-1] > 0)
+    fast = np.zeros(n, bool)
+    k = cd.decimate_every
+    idx = np.flatnonzero(fast_iv)
+    if len(idx):
+        # interval i joins samples i and i+1; dilate by k samples on each side
+        marks = np.zeros(n + 1, int)
+        np.add.at(marks, np.clip(idx - k, 0, n), 1)
+        np.add.at(marks, np.clip(idx + 1 + k + 1, 0, n), -1)
+        fast = np.cumsum(marks[:n]) > 0
+    g = np.floor(t / output_period + 0.5).astype(np.int64)
+    keep = fast | (g % k == 0)
+    if n:
+        keep[0] = keep[-1] = True
+    return keep, fast
+
+
+# --------------------------------------------------------------------------------------------
+# results file
+
+def _units(names):
+    from .results import coordinate_units
+
+    uq = coordinate_units(names)
+    uv = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in uq]
+    return uq, uv
+
+
+CHUNK_COLUMNS = {  # /coastdown/chunks/NAME: one row per finished chunk
+    "t_start_s": "s", "t_end_s": "s", "rotor_speed_rpm": "rpm", "wall_s": "s (solver only)", "steps": "-",
+    "newton_iterations": "-", "jacobians": "-", "samples_kept": "-", "samples_fast": "-",
+    "whirl_direction": "-1 backward, 0 none, +1 forward (DE bearing, per chunk)", "whirl_frequency_hz": "Hz",
+}
+
+
+def _resizable(g, name, shape_tail, dtype=float, unit=None):
+    ds = g.create_dataset(name, shape=(0,) + shape_tail, maxshape=(None,) + shape_tail, dtype=dtype,
+                          chunks=(H5_ROW_CHUNK if not shape_tail else max(64, H5_ROW_CHUNK // shape_tail[0]),)
+                          + shape_tail, **H5_COMPRESSION)
+    if unit is not None:
+        ds.attrs["unit"] = unit
+    return ds
+
+
+def _append(ds, rows):
+    n = ds.shape[0]
+    ds.resize(n + len(rows), axis=0)
+    ds[n:] = rows
+
+
+def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_names: list[str], bearing_names):
+    """A new coast-down results.h5 with empty resizable datasets (layout of rotorlanding.results
+    plus /coastdown)."""
+    import exudyn
+    import h5py
+
+    from . import __version__
+    from .results import unit_of
+
+    tmp = path.with_suffix(".h5.part")
+    with h5py.File(tmp, "w") as h5:
+        h5.attrs["package"] = "rotorlanding"
+        h5.attrs["package_version"] = __version__
+        h5.attrs["exudyn_version"] = exudyn.__version__
+        h5.attrs["scenario_name"] = scenario.name
+        h5.attrs["kind"] = "coastdown"
+        h5.attrs["complete"] = False
+        h5.attrs["t_reached_s"] = 0.0
+        h5.attrs["message"] = "running"
+        h5.attrs["created_utc"] = _utc()
+        h5["scenario_json"] = json.dumps(scenario.raw)
+        h5["coastdown_json"] = json.dumps(asdict(cd))
+        _resizable(h5, "time_s", (), unit="s")
+        g = h5.create_group("states")
+        uq, uv = _units(spec.names)
+        for key, units in (("q", uq), ("v", uv)):
+            ds = _resizable(g, key, (spec.n,))
+            ds.attrs["names"] = json.dumps(spec.names)
+            ds.attrs["units"] = json.dumps(units)
+        s = h5.create_group("series")
+        for name in series_names:
+            _resizable(s, name, (), unit=unit_of(name))
+        h5["summary_json"] = json.dumps({"scenario": scenario.name, "complete": False})
+        c = h5.create_group("coastdown")
+        ch = c.create_group("chunks")
+        for name, unit in CHUNK_COLUMNS.items():
+            _resizable(ch, name, (), unit=unit)
+        for b in bearing_names:
+            _resizable(ch, f"{b}_max_contact_force_n", (), unit="N")
+        r = c.create_group("restart")
+        r.attrs["description"] = ("state a chunk restarts from: q, v at time t_s after `chunks` finished chunks; "
+                                  "rows beyond n_rows are uncommitted")
+        q0, v0 = spec.initial_state()
+        r["q"] = q0
+        r["v"] = v0
+        r.attrs.update(t_s=0.0, chunks=0, n_rows=0, wall_s=0.0, solver_wall_s=0.0, steps=0, newton_iterations=0, jacobians=0,
+                       stop_reason="")
+    tmp.replace(path)
+
+
+def _utc():
+    import datetime as _dt
+
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+class Store:
+    """An open coast-down results.h5 with cached dataset handles: read the restart record,
+    append one chunk, commit (restart record last, then flush)."""
+
+    def __init__(self, path: Path, mode: str = "a"):
+        import h5py
+
+        self.path = path
+        self.h5 = h5py.File(path, mode)
+        h5 = self.h5
+        self.rows = {"time_s": h5["time_s"], "q": h5["states/q"], "v": h5["states/v"]}
+        self.series = {k: h5["series"][k] for k in h5["series"]}
+        self.chunks = {k: h5["coastdown/chunks"][k] for k in h5["coastdown/chunks"]}
+        self.r = h5["coastdown/restart"]
+        self.cumulative = [k for k in self.series if k.startswith(CUMULATIVE_PREFIXES)]
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def restart(self) -> dict:
+        out = dict(self.r.attrs)
+        out["q"] = self.r["q"][()]
+        out["v"] = self.r["v"][()]
+        n = int(out["n_rows"])
+        out["offsets"] = {k: float(self.series[k][n - 1]) if n else 0.0 for k in self.cumulative}
+        return out
+
+    def truncate(self):
+        """Drop rows written after the last commit (a run killed while writing a chunk)."""
+        n, k = int(self.r.attrs["n_rows"]), int(self.r.attrs["chunks"])
+        for ds in list(self.rows.values()) + list(self.series.values()):
+            if ds.shape[0] > n:
+                ds.resize(n, axis=0)
+        for ds in self.chunks.values():
+            if ds.shape[0] > k:
+                ds.resize(k, axis=0)
+
+    def append(self, t, q, v, series: dict):
+        for ds, arr in ((self.rows["time_s"], t), (self.rows["q"], q), (self.rows["v"], v)):
+            _append(ds, arr)
+        for name, arr in series.items():
+            _append(self.series[name], arr)
+
+    def close(self):
+        self.h5.close()
+
+
+def read_restart(path: Path) -> dict:
+    with Store(path, "r") as st:
+        return st.restart()
+
+
+# --------------------------------------------------------------------------------------------
+# the run
+
+class Interrupted(Exception):
+    """Raised by a test hook to simulate a kill between chunks."""
+
+
+def _classify_whirl(spec, t, series, chunk_s):
+    """Whirl of the DE (else first) bearing within one chunk: (direction -1/0/1, frequency)."""
+    from .whirl import whirl_analysis
+
+    b = next((b for b in spec.bearings if b.name == "DE"), spec.bearings[0])
+    try:
+        tu, yu, zu, rpm = uniform(t, series[b.name + "_y_m"], series[b.name + "_z_m"], series["rotor_speed_rpm"])
+        window = min(0.05, chunk_s / 2)
+        wr = whirl_analysis(tu, yu, zu, clearance=b.params.clearance, spin_hz=np.maximum(np.abs(rpm) / 60.0, 1e-6),
+                            window_s=window, min_duration_s=0.5 * (chunk_s - window))
+    except (ValueError, InputError):
+        return 0, float("nan")
+    d = {"none": 0, "forward": 1, "backward": -1}[wr.direction]
+    return d, (wr.frequency_hz if wr.frequency_hz is not None else float("nan"))
+
+
+def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = False, overwrite: bool = False,
+                  progress=True, plots: bool = True, on_chunk=None) -> dict:
+    """Run (or resume) the chunked coast-down; returns the summary (also in summary.json).
+
+    ``on_chunk(info)`` is called after each chunk is committed to the file (a test hook; raising
+    there simulates an interruption). ``progress``: True/False or a stream."""
+    import h5py
+
+    from .exudyn_model import SolverSettings, build_exudyn, collect, solve
+    from .landing import build_spec
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "results.h5"
+    spec = build_spec(scenario)
+    settings = SolverSettings.from_spec(spec)
+    stream = sys.stderr if progress is True else (progress or None)
+    cd_json = json.dumps(asdict(cd))
+
+    existing = path.is_file()
+    if existing and resume:
+        _check_resumable(path, scenario, cd_json)
+    elif existing and not overwrite:
+        try:
+            with h5py.File(path, "r") as h5:
+                unfinished = h5.attrs.get("kind") == "coastdown" and not bool(h5.attrs.get("complete"))
+                t_r = float(h5["coastdown/restart"].attrs["t_s"]) if unfinished else 0.0
+        except (OSError, KeyError):
+            unfinished, t_r = False, 0.0
+        if unfinished:
+            raise InputError("--out", str(out), f"holds an unfinished coast-down (t = {t_r:g} s): pass --resume to "
+                             "continue it or --overwrite to start over")
+    if not (existing and resume):
+        # series names: evaluate a one-sample record
+        q0, v0 = spec.initial_state()
+        names = list(evaluate(spec, np.zeros(2), np.vstack([q0, q0]), np.vstack([v0, v0])))
+        create_file(path, scenario, cd, spec, names, spec.bearing_names)
+    elif stream:
+        stream.write(f"resuming {path} from t = {read_restart(path)['t_s']:g} s\n")
+
+    t_end = scenario.t_end
+    stop_rpm = cd.stop_speed_rpm
+    max_buffer = 0
+    wall_start = time.perf_counter()
+    t_first = None
+    last_print = -1e9
+    with Store(path) as store:
+        store.truncate()
+    # the file is open only while a chunk is read or committed: a kill during a solve (nearly all
+    # of the wall time) leaves a closed, consistent file, and other programs can read it meanwhile
+    while True:
+        with Store(path, "r") as store:
+            rs = store.restart()  # every chunk starts from what is committed in the file
+        k = int(rs["chunks"])
+        t0 = float(rs["t_s"])
+        if rs["stop_reason"]:
+            break
+        if t_first is None:
+            t_first = t0
+        t1 = min((k + 1) * cd.chunk_s, t_end)
+        wall_chunk0 = time.perf_counter()
+        model = build_exudyn(spec, rs["q"], rs["v"])
+        ok, msg, stats = solve(model, t0, t1, settings)
+        t, q, v = collect(model)
+        qe, ve = final_state(model)
+        del model
+        if not ok:
+            sel = t <= stats["t_reached"] + 1e-12
+            t, q, v = t[sel], q[sel], v[sel]
+        elif abs(t[-1] - t1) > 1e-9 * max(1.0, t1):
+            t, q, v = np.append(t, t1), np.vstack([q, qe]), np.vstack([v, ve])
+        else:
+            t[-1], q[-1], v[-1] = t1, qe, ve
+        max_buffer = max(max_buffer, len(t))
+        keep, fast = keep_mask(t, normal_forces(spec, q, v), cd, settings.output_period)
+        t, q, v = t[keep], q[keep], v[keep]
+        series = evaluate(spec, t, q, v)  # on the kept samples only; cumulative from the chunk start
+        for name, off in rs["offsets"].items():
+            series[name] = series[name] + off
+        speed_now = abs(v[-1, spec.i_theta]) * 30 / math.pi
+        new = slice(1 if k > 0 else 0, None)  # a chunk's first sample is the previous chunk's last
+        whirl = _classify_whirl(spec, t, series, t1 - t0) if ok and len(t) > 8 else (0, float("nan"))
+        with Store(path) as store:
+            store.append(t[new], q[new], v[new], {name: arr[new] for name, arr in series.items()})
+            store.h5.attrs["t_reached_s"] = float(t[-1])
+            r = store.r
+            if not ok:
+                # the partial chunk stays for inspection; the restart record stays at the last
+                # finished chunk (resuming would repeat the same failure)
+                store.h5.attrs["message"] = f"solver stopped at t = {t[-1]:.6g} s: {msg}"
+                r.attrs["stop_reason"] = "solver failed"
+            else:
+                row = {"t_start_s": t0, "t_end_s": t1, "rotor_speed_rpm": speed_now, "wall_s": stats["wall_s"],
+                       "steps": stats["steps"], "newton_iterations": stats["newton_iterations"],
+                       "jacobians": stats["jacobians"], "samples_kept": len(t) - (1 if k > 0 else 0),
+                       "samples_fast": int(fast.sum()), "whirl_direction": whirl[0], "whirl_frequency_hz": whirl[1]}
+                for b in spec.bearing_names:
+                    row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(
+                        series[b + "_contact_force_y_n"] + series[b + "_rub_force_y_n"],
+                        series[b + "_contact_force_z_n"] + series[b + "_rub_force_z_n"])))
+                for name, val in row.items():
+                    _append(store.chunks[name], [val])
+                reason = ""
+                if speed_now <= stop_rpm:
+                    reason = f"rotor speed {speed_now:.1f} rpm <= stop_speed_rpm {stop_rpm:g}"
+                    rpm = np.abs(series["rotor_speed_rpm"])
+                    i = int(np.argmax(rpm <= stop_rpm))  # first sample at or below the stop speed
+                    r.attrs["t_stop_s"] = float(t[i] if i == 0 else np.interp(stop_rpm, [rpm[i], rpm[i - 1]],
+                                                                               [t[i], t[i - 1]]))
+                elif t1 >= t_end - 0.5 * settings.step:
+                    reason = f"t_end ({t_end:g} s) reached at {speed_now:.4g} rpm"
+                # commit: the restart record is written last
+                r["q"][...] = q[-1]
+                r["v"][...] = v[-1]
+                r.attrs.update(t_s=t1, chunks=k + 1, n_rows=store.rows["time_s"].shape[0],
+                               wall_s=float(r.attrs["wall_s"]) + (time.perf_counter() - wall_chunk0),
+                               solver_wall_s=float(r.attrs["solver_wall_s"]) + stats["wall_s"],
+                               steps=int(r.attrs["steps"]) + stats["steps"],
+                               newton_iterations=int(r.attrs["newton_iterations"]) + stats["newton_iterations"],
+                               jacobians=int(r.attrs["jacobians"]) + stats["jacobians"], stop_reason=reason)
+            done = bool(r.attrs["stop_reason"])
+        now = time.perf_counter()
+        if stream and (now - last_print > 2.0 or done):
+            last_print = now
+            w = now - wall_start
+            stream.write(f"t = {t[-1]:8.3f} s  rotor {speed_now:7.1f} rpm  chunk {k + 1}  wall {w:7.1f} s  "
+                         f"({w / max(t[-1] - t_first, 1e-9):.2f} s wall per simulated s; "
+                         f"peak {_maxrss_mb():.0f} MB)\n")
+            stream.flush()
+        if on_chunk is not None:
+            on_chunk({"chunk": k, "t_s": float(t[-1]), "rotor_speed_rpm": speed_now, "ok": ok,
+                      "buffer_samples": len(keep), "max_buffer_samples": max_buffer})
+    summary = finish(path, spec, scenario, cd, plots=plots)
+    summary["performance"]["max_buffer_samples_this_process"] = max_buffer
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
+
+
+def final_state(model) -> tuple[np.ndarray, np.ndarray]:
+    """(q, v) of the model's nodes now (after a solve: at its end time), in spec order."""
+    import exudyn as exu
+
+    q = np.zeros(model.spec.n)
+    v = np.zeros(model.spec.n)
+    for nd, sl in model.node_slices:
+        q[sl] = model.mbs.GetNodeOutput(nd, exu.OutputVariableType.Coordinates)
+        v[sl] = model.mbs.GetNodeOutput(nd, exu.OutputVariableType.Coordinates_t)
+    return q, v
+
+
+def _check_resumable(path: Path, scenario: Scenario, cd_json: str):
+    import h5py
+
+    try:
+        with h5py.File(path, "r") as h5:
+            if h5.attrs.get("kind") != "coastdown" or "coastdown/restart" not in h5:
+                raise InputError("--resume", str(path), "is not a coast-down results file; run without --resume")
+            same = json.loads(h5["scenario_json"][()]) == json.loads(json.dumps(scenario.raw)) \
+                and json.loads(h5["coastdown_json"][()]) == json.loads(cd_json)
+    except OSError as exc:
+        raise InputError("--resume", str(path), f"cannot be read ({exc}); start over with --overwrite") from None
+    if not same:
+        raise InputError("--resume", str(path), "was written for a different scenario or [coastdown] table; "
+                         "resume with the same file and --set values, or start over with --overwrite")
+
+
+def _maxrss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def whirl_phases(t_start, t_end, direction, freq, speed_end) -> list[dict]:
+    """Contiguous runs of chunks with the same per-chunk whirl direction."""
+    names = {0: "none", 1: "forward", -1: "backward"}
+    out = []
+    i = 0
+    n = len(direction)
+    while i < n:
+        j = i
+        while j + 1 < n and direction[j + 1] == direction[i]:
+            j += 1
+        f = freq[i:j + 1]
+        f = f[np.isfinite(f)]
+        out.append({"direction": names[int(direction[i])], "t_start_s": float(t_start[i]), "t_end_s": float(t_end[j]),
+                    "rotor_speed_rpm_at_end": float(speed_end[j]),
+                    "frequency_hz_median": float(np.median(f)) if len(f) else None})
+        i = j + 1
+    return out
+
+
+def finish(path: Path, spec, scenario: Scenario, cd: Coastdown, *, plots: bool = True) -> dict:
+    """Summary of the run from the file (reads only a few series), summary_json, figure."""
+    import h5py
+
+    with h5py.File(path, "a") as h5:
+        r = h5["coastdown/restart"]
+        n_file = h5["time_s"].shape[0]
+        s = h5["series"]
+        last = {k: float(s[k][n_file - 1]) for k in s if k.startswith(CUMULATIVE_PREFIXES)} if n_file else {}
+        ch = {k: h5["coastdown/chunks"][k][()] for k in h5["coastdown/chunks"]}
+        first_last = {k: (float(s[k][0]), float(s[k][n_file - 1])) for k in ("kinetic_energy_j", "potential_energy_j",
+                                                                               "rotor_speed_rpm")} if n_file else {}
+        races = {b: float(s[b + "_race_speed_rpm"][n_file - 1]) for b in spec.bearing_names} if n_file else {}
+        reason = str(r.attrs["stop_reason"])
+        complete = bool(reason) and reason != "solver failed"
+        t_reached = float(h5.attrs["t_reached_s"])
+        perf = {"simulated_s": float(r.attrs["t_s"]), "wall_s": float(r.attrs["wall_s"]),
+                "solver_wall_s": float(r.attrs["solver_wall_s"]),
+                "steps": int(r.attrs["steps"]), "newton_iterations": int(r.attrs["newton_iterations"]),
+                "jacobians": int(r.attrs["jacobians"]), "chunks": int(r.attrs["chunks"]), "chunk_s": cd.chunk_s,
+                "step_s": scenario.solver.step, "output_period_s": scenario.solver.output_period,
+                "samples_stored": n_file,
+                "samples_full_rate": int(round(float(r.attrs["t_s"]) / scenario.solver.output_period)) + 1}
+        perf["wall_s_per_simulated_s"] = perf["wall_s"] / max(perf["simulated_s"], 1e-12)
+        perf["decimation_ratio"] = perf["samples_full_rate"] / max(n_file, 1)
+        summary = {"scenario": scenario.name, "kind": "coastdown", "complete": complete,
+                   "stop_reason": reason or "interrupted (resume with --resume)", "t_reached_s": t_reached,
+                   "coastdown": asdict(cd)}
+        if n_file:
+            ser = {"kinetic_energy_j": np.array(first_last["kinetic_energy_j"]),
+                   "potential_energy_j": np.array(first_last["potential_energy_j"])}
+            for k2, v2 in last.items():
+                ser[k2] = np.array([0.0, v2])
+            summary["time_to_stop_s"] = float(r.attrs["t_stop_s"]) if "t_stop_s" in r.attrs else None
+            summary["speeds"] = {"initial_rotor_rpm": scenario.speed_rpm, "final_rotor_rpm": first_last["rotor_speed_rpm"][1],
+                                 "final_inner_race_rpm": races}
+            summary["energy"] = energy_summary(ser)
+            summary["bearings"] = {b: {"max_contact_force_n": float(np.max(ch[f"{b}_max_contact_force_n"]))
+                                       if len(ch[f"{b}_max_contact_force_n"]) else 0.0} for b in spec.bearing_names}
+            summary["whirl_phases"] = whirl_phases(ch["t_start_s"], ch["t_end_s"], ch["whirl_direction"],
+                                                   ch["whirl_frequency_hz"], ch["rotor_speed_rpm"])
+        if not complete and reason == "solver failed":
+            summary["message"] = str(h5.attrs["message"])
+        h5.attrs["complete"] = complete
+        h5.attrs["message"] = summary.get("message", reason)
+        summary["units"] = "SI (m, N, s, J); speeds in rpm as named"
+        del h5["summary_json"]
+        h5["summary_json"] = json.dumps(summary)
+    perf["peak_memory_mb"] = _maxrss_mb()
+    perf["results_h5_mb"] = path.stat().st_size / 1e6
+    summary["performance"] = perf
+    if plots and n_file:
+        summary["figures"] = [plot_coastdown(path, path.parent / "coastdown.png").name]
+    (path.parent / "summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
+
+
+def plot_coastdown(h5_path: Path, png: Path) -> Path:
+    """Speed vs time (rotor and inner races), per-chunk peak contact force, energy dissipated."""
+    import h5py
+
+    from .plots import _plt
+
+    plt = _plt()
+    with h5py.File(h5_path, "r") as h5:
+        t = h5["time_s"][()]
+        s = h5["series"]
+        rotor = s["rotor_speed_rpm"][()]
+        races = {k[:-len("_race_speed_rpm")]: s[k][()] for k in s if k.endswith("_race_speed_rpm")}
+        diss = {k[len("dissipated_"):-2]: s[k][()] for k in s if k.startswith("dissipated_")}
+        ch = h5["coastdown/chunks"]
+        tc = ch["t_end_s"][()]
+        fmax = {k[:-len("_max_contact_force_n")]: ch[k][()] for k in ch if k.endswith("_max_contact_force_n")}
+        wd = ch["whirl_direction"][()]
+        name = h5.attrs["scenario_name"]
+    fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    ax = axes[0]
+    ax.plot(t, rotor, "k", label="rotor")
+    for b, w in races.items():
+        ax.plot(t, w, label=f"{b} inner race", alpha=0.8)
+    for d, col in ((1, "tab:red"), (-1, "tab:blue")):
+        sel = wd == d
+        if np.any(sel):
+            ax.plot(tc[sel], np.interp(tc[sel], t, rotor), "o", ms=3, color=col,
+                    label=f"{'forward' if d > 0 else 'backward'} whirl (chunk)")
+    ax.set_ylabel("speed [rpm]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    for b, f in fmax.items():
+        axes[1].plot(tc, f, label=b)
+    axes[1].set_ylabel("peak contact force\nper chunk [N]")
+    axes[1].legend(fontsize=8)
+    axes[1].grid(alpha=0.3)
+    for k, e in sorted(diss.items(), key=lambda kv: -kv[1][-1] if len(kv[1]) else 0)[:6]:
+        axes[2].plot(t, e, label=k)
+    axes[2].set_ylabel("energy dissipated [J]")
+    axes[2].set_xlabel("time [s]")
+    axes[2].legend(fontsize=8)
+    axes[2].grid(alpha=0.3)
+    fig.suptitle(f"{name}: coast-down")
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return png
+
+
+def format_summary(summary: dict) -> str:
+    lines = [f"scenario: {summary['scenario']} (coast-down)" +
+             ("" if summary.get("complete") else f"  [INCOMPLETE: {summary.get('message', summary['stop_reason'])}]")]
+    lines.append(f"stopped: {summary['stop_reason']} at t = {summary['t_reached_s']:.3f} s" +
+                 (f" (stop speed crossed at {summary['time_to_stop_s']:.3f} s)" if summary.get("time_to_stop_s") else ""))
+    s = summary.get("speeds")
+    if s:
+        lines.append(f"rotor speed: {s['initial_rotor_rpm']:.0f} -> {s['final_rotor_rpm']:.1f} rpm; inner races " +
+                     ", ".join(f"{b} {w:.1f}" for b, w in s["final_inner_race_rpm"].items()) + " rpm")
+    e = summary.get("energy")
+    if e:
+        top = sorted(e["dissipated_j"].items(), key=lambda kv: -kv[1])
+        lines.append(f"energy dissipated: {e['dissipated_total_j']:.1f} J (" +
+                     ", ".join(f"{k} {v:.1f} J" for k, v in top if v > 1e-3 * max(e['dissipated_total_j'], 1e-12)) +
+                     f"); balance error {100 * e['balance_error_relative']:.2f} %")
+    for ph in summary.get("whirl_phases", []):
+        if ph["direction"] != "none":
+            f = f" ~{ph['frequency_hz_median']:.1f} Hz" if ph["frequency_hz_median"] else ""
+            lines.append(f"whirl: {ph['direction']}{f} from {ph['t_start_s']:.2f} to {ph['t_end_s']:.2f} s")
+    p = summary["performance"]
+    lines.append(f"performance: {p['simulated_s']:.2f} s simulated in {p['wall_s']:.1f} s solver wall "
+                 f"({p['wall_s_per_simulated_s']:.2f} s/s), {p['chunks']} chunks of {p['chunk_s']:g} s, "
+                 f"{p['samples_stored']} of {p['samples_full_rate']} samples stored, peak memory "
+                 f"{p['peak_memory_mb']:.0f} MB, results.h5 {p['results_h5_mb']:.1f} MB")
+    return "\n".join(lines)

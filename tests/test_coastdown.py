@@ -1,0 +1,195 @@
+"""Coast-down: chunked streaming run, decimation, bounded memory, exact resume, CLI, input errors."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from rotorlanding.cli import main
+from rotorlanding.coastdown import Interrupted, load_coastdown, read_restart, run_coastdown
+from rotorlanding.errors import InputError
+from rotorlanding.results import read_results
+
+ROOT = Path(__file__).resolve().parents[1]
+SCEN = ROOT / "scenarios" / "coastdown_7000rpm.toml"
+# short: 6 chunks of 0.05 s (the drop, first impacts and the race spin-up), ~1 s wall each run
+SHORT = ["operating.t_end=0.3", "coastdown.chunk_s=0.05"]
+
+
+def _run(out, overrides=SHORT, **kw):
+    sc, cd = load_coastdown(SCEN, overrides)
+    return run_coastdown(sc, cd, out, progress=False, plots=False, **kw)
+
+
+def _arrays(path):
+    with h5py.File(path, "r") as h5:
+        out = {"time_s": h5["time_s"][()], "q": h5["states/q"][()], "v": h5["states/v"][()]}
+        out.update({"series/" + k: h5["series"][k][()] for k in h5["series"]})
+        out.update({"chunks/" + k: h5["coastdown/chunks"][k][()] for k in h5["coastdown/chunks"]
+                    if k != "wall_s"})
+    return out
+
+
+@pytest.fixture(scope="module")
+def uninterrupted(tmp_path_factory):
+    out = tmp_path_factory.mktemp("cd_full")
+    infos = []
+    summary = _run(out, on_chunk=infos.append)
+    return out, summary, infos
+
+
+def test_runs_to_t_end_and_reads_like_a_landing_file(uninterrupted):
+    out, summary, infos = uninterrupted
+    assert summary["complete"] and summary["stop_reason"].startswith("t_end")
+    assert summary["performance"]["chunks"] == 6 and len(infos) == 6
+    res = read_results(out / "results.h5")  # the ordinary reader works
+    t = res["time_s"]
+    assert t[0] == 0.0 and abs(t[-1] - 0.3) < 1e-12 and np.all(np.diff(t) > 0)
+    assert res["q"].shape == (len(t), len(res["names"]))
+    for name in ("rotor_speed_rpm", "DE_normal_force_n", "dissipated_radial_friction_j", "kinetic_energy_j"):
+        assert len(res["series"][name]) == len(t)
+    with h5py.File(out / "results.h5", "r") as h5:
+        assert h5["series/DE_normal_force_n"].attrs["unit"] == "N"
+        assert json.loads(h5["states/q"].attrs["names"]) == res["names"]
+    # cumulative energies continue across chunk boundaries (non-decreasing dissipation)
+    assert np.all(np.diff(res["series"]["dissipated_radial_friction_j"]) >= -1e-9)
+    assert summary["energy"]["balance_error_relative"] < 0.01
+    assert res["summary"]["kind"] == "coastdown"
+
+
+def test_decimation_keeps_impacts_at_full_rate(uninterrupted):
+    out, summary, _ = uninterrupted
+    res = read_results(out / "results.h5")
+    t, f = res["time_s"], res["series"]["DE_normal_force_n"]
+    dt = np.diff(t)
+    period = 1e-4
+    # the first touchdown: full output rate around it
+    i = int(np.argmax(f > 0))
+    assert np.allclose(dt[max(i - 5, 0): i + 5], period, rtol=1e-6)
+    # fewer samples than the full rate, and smooth stretches at decimate_every x period
+    assert summary["performance"]["samples_stored"] < summary["performance"]["samples_full_rate"]
+    assert np.any(np.isclose(dt, 10 * period, rtol=1e-6))
+    assert np.max(dt) <= 10 * period * (1 + 1e-6)
+
+
+def test_buffer_bounded_by_chunk_not_run_length(tmp_path, uninterrupted):
+    _, _, infos6 = uninterrupted
+    infos2 = []
+    _run(tmp_path, ["operating.t_end=0.1", "coastdown.chunk_s=0.05"], on_chunk=infos2.append)
+    per_chunk = 0.05 / 1e-4 + 1  # samples of one chunk incl. its start
+    assert max(i["buffer_samples"] for i in infos6) == per_chunk
+    assert max(i["max_buffer_samples"] for i in infos2) == max(i["max_buffer_samples"] for i in infos6)
+
+
+def test_interrupted_and_resumed_equals_uninterrupted(tmp_path, uninterrupted):
+    full_dir, full_summary, _ = uninterrupted
+
+    def stop_after_two(info):
+        if info["chunk"] == 1:
+            raise Interrupted
+
+    with pytest.raises(Interrupted):
+        _run(tmp_path, on_chunk=stop_after_two)
+    rs = read_restart(tmp_path / "results.h5")
+    assert rs["chunks"] == 2 and rs["t_s"] == pytest.approx(0.1)
+    # a kill while the next chunk was being written leaves uncommitted rows: resume drops them
+    with h5py.File(tmp_path / "results.h5", "a") as h5:
+        for name in ("time_s", "series/rotor_speed_rpm"):
+            ds = h5[name]
+            ds.resize(ds.shape[0] + 7, axis=0)
+            ds[-7:] = 1e9
+    # without --resume an unfinished run is not overwritten by accident
+    with pytest.raises(InputError, match="--resume"):
+        _run(tmp_path)
+    summary = _run(tmp_path, resume=True)
+    assert summary["complete"]
+    a, b = _arrays(full_dir / "results.h5"), _arrays(tmp_path / "results.h5")
+    assert a.keys() == b.keys()
+    for key in a:
+        assert np.array_equal(a[key], b[key], equal_nan=True), key  # bit for bit
+    ra, rb = read_restart(full_dir / "results.h5"), read_restart(tmp_path / "results.h5")
+    assert np.array_equal(ra["q"], rb["q"]) and np.array_equal(ra["v"], rb["v"]) and ra["t_s"] == rb["t_s"]
+    assert summary["energy"] == full_summary["energy"]
+
+
+def test_resume_refuses_a_different_scenario(tmp_path):
+    _run(tmp_path, ["operating.t_end=0.05", "coastdown.chunk_s=0.05"])
+    with pytest.raises(InputError, match="different scenario"):
+        _run(tmp_path, ["operating.t_end=0.05", "coastdown.chunk_s=0.05", "contact.mu_rad=0.3"], resume=True)
+
+
+@pytest.mark.parametrize("override, field, text", [
+    ("coastdown.chunk_s=0.00015", "coastdown.chunk_s", "whole multiple of solver.output_period"),
+    ("coastdown.chunk_s=0.001", "coastdown.chunk_s", "must lie in"),
+    ("coastdown.stop_speed_rpm=9000", "coastdown.stop_speed_rpm", "below operating.speed_rpm"),
+    ("coastdown.stop_speed_rpm=0", "coastdown.stop_speed_rpm", "must be > 0"),
+    ("coastdown.decimate_every=0", "coastdown.decimate_every", "integer >= 1"),
+    ("coastdown.fast_force_rate_n_s=-1", "coastdown.fast_force_rate_n_s", "must be > 0"),
+    ("coastdown.speed=3", "--set coastdown.speed", "unknown field"),
+])
+def test_bad_coastdown_fields(override, field, text):
+    with pytest.raises(InputError) as err:
+        load_coastdown(SCEN, [override])
+    msg = str(err.value)
+    assert "\n" not in msg and err.value.field == field and text in msg
+
+
+def test_drive_must_coast():
+    with pytest.raises(InputError, match="spin.drive = 'constant': a coast-down needs drive = 'coast'"):
+        load_coastdown(SCEN, ["spin.drive=constant", "spin.drive_gain=1"])
+
+
+def test_cli_coastdown_stop_speed_and_run_hint(tmp_path, capsys):
+    out = tmp_path / "cd"
+    rc = main(["coastdown", str(SCEN), "--out", str(out), "--set", "coastdown.stop_speed_rpm=6990", "--quiet"])
+    text = capsys.readouterr().out
+    assert rc == 0
+    assert "stop_speed_rpm 6990" in text and "energy dissipated" in text
+    s = json.loads((out / "summary.json").read_text())
+    assert s["complete"] and s["speeds"]["final_rotor_rpm"] <= 6990
+    assert 0 < s["time_to_stop_s"] <= s["t_reached_s"]
+    assert (out / "coastdown.png").is_file()
+    # `rotorlanding run` on a coast-down scenario points to the right command
+    rc = main(["run", str(SCEN), "--out", str(tmp_path / "x")])
+    assert rc == 2 and "rotorlanding coastdown" in capsys.readouterr().err
+
+
+def _h5_chunks(path):
+    try:
+        with h5py.File(path, "r") as h5:
+            return int(h5["coastdown/restart"].attrs["chunks"])
+    except (OSError, KeyError):
+        return 0
+
+
+def test_killed_process_resumes_to_the_same_state(tmp_path, uninterrupted):
+    """SIGKILL a CLI run part-way (whatever it was doing), resume it, compare with the
+    uninterrupted run."""
+    full_dir, _, _ = uninterrupted
+    out = tmp_path / "killed"
+    args = [sys.executable, "-m", "rotorlanding", "coastdown", str(SCEN), "--out", str(out), "--quiet", "--no-plots",
+            "--set", "operating.t_end=0.3", "--set", "coastdown.chunk_s=0.05"]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 60
+    while _h5_chunks(out / "results.h5") < 2 and proc.poll() is None and time.time() < deadline:
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    done = _h5_chunks(out / "results.h5")
+    print("chunks done when killed:", done)
+    assert 2 <= done <= 6
+    res = subprocess.run(args + ["--resume"], env=env, capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
+    a, b = _arrays(full_dir / "results.h5"), _arrays(out / "results.h5")
+    for key in a:
+        assert np.array_equal(a[key], b[key], equal_nan=True), key
