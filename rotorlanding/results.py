@@ -11,6 +11,10 @@ HDF5 layout::
     /states/q, /states/v   generalised coordinates and velocities, attrs: names, units
     /series/NAME      derived time series; attr unit (SI, given by the name's suffix)
     /summary_json     the summary (JSON text)
+
+A coast-down (``rotorlanding coastdown``, :mod:`rotorlanding.coastdown`) writes the same datasets
+as resizable, appended chunk by chunk (decimated, irregular ``time_s``), plus attrs ``kind =
+"coastdown"``, ``/coastdown_json``, ``/coastdown/chunks/*`` and ``/coastdown/restart``.
 """
 
 from __future__ import annotations

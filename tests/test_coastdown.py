@@ -22,7 +22,7 @@ from rotorlanding.results import read_results
 ROOT = Path(__file__).resolve().parents[1]
 SCEN = ROOT / "scenarios" / "coastdown_7000rpm.toml"
 # short: 6 chunks of 0.05 s (the drop, first impacts and the race spin-up), ~1 s wall each run
-SHORT = ["operating.t_end=0.3", "coastdown.chunk_s=0.05"]
+SHORT = ["operating.t_end=0.3", "coastdown.chunk_s=0.05", "coastdown.decimate_every=10"]
 
 
 def _run(out, overrides=SHORT, **kw):
@@ -177,7 +177,7 @@ def test_killed_process_resumes_to_the_same_state(tmp_path, uninterrupted):
     full_dir, _, _ = uninterrupted
     out = tmp_path / "killed"
     args = [sys.executable, "-m", "rotorlanding", "coastdown", str(SCEN), "--out", str(out), "--quiet", "--no-plots",
-            "--set", "operating.t_end=0.3", "--set", "coastdown.chunk_s=0.05"]
+            ] + [a for kv in SHORT for a in ("--set", kv)]
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
     proc = subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.time() + 60
@@ -186,8 +186,7 @@ def test_killed_process_resumes_to_the_same_state(tmp_path, uninterrupted):
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     done = _h5_chunks(out / "results.h5")
-    print("chunks done when killed:", done)
-    assert 2 <= done <= 6
+    assert 2 <= done < 6  # killed part-way
     res = subprocess.run(args + ["--resume"], env=env, capture_output=True, text=True)
     assert res.returncode == 0, res.stderr
     a, b = _arrays(full_dir / "results.h5"), _arrays(out / "results.h5")
