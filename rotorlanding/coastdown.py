@@ -635,7 +635,7 @@ def plot_coastdown(h5_path: Path, png: Path) -> Path:
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     for b, f in fmax.items():
-        axes[1].plot(tc, f, label=b)
+        axes[1].step(tc, f, where="pre", label=b)
     axes[1].set_ylabel("peak contact force\nper chunk [N]")
     axes[1].legend(fontsize=8)
     axes[1].grid(alpha=0.3)
@@ -672,8 +672,9 @@ def format_summary(summary: dict) -> str:
             f = f" ~{ph['frequency_hz_median']:.1f} Hz" if ph["frequency_hz_median"] else ""
             lines.append(f"whirl: {ph['direction']}{f} from {ph['t_start_s']:.2f} to {ph['t_end_s']:.2f} s")
     p = summary["performance"]
-    lines.append(f"performance: {p['simulated_s']:.2f} s simulated in {p['wall_s']:.1f} s solver wall "
-                 f"({p['wall_s_per_simulated_s']:.2f} s/s), {p['chunks']} chunks of {p['chunk_s']:g} s, "
+    lines.append(f"performance: {p['simulated_s']:.2f} s simulated in {p['wall_s']:.1f} s wall (solver "
+                 f"{p['solver_wall_s']:.1f} s; {p['wall_s_per_simulated_s']:.2f} s/s), {p['chunks']} chunks of "
+                 f"{p['chunk_s']:g} s, "
                  f"{p['samples_stored']} of {p['samples_full_rate']} samples stored, peak memory "
                  f"{p['peak_memory_mb']:.0f} MB, results.h5 {p['results_h5_mb']:.1f} MB")
     return "\n".join(lines)

@@ -192,3 +192,29 @@ def test_killed_process_resumes_to_the_same_state(tmp_path, uninterrupted):
     a, b = _arrays(full_dir / "results.h5"), _arrays(out / "results.h5")
     for key in a:
         assert np.array_equal(a[key], b[key], equal_nan=True), key
+
+
+def test_stored_case_can_be_rerun(uninterrupted):
+    out, _, _ = uninterrupted
+    sc, cd = load_coastdown(out / "results.h5")
+    sc0, cd0 = load_coastdown(SCEN, SHORT)
+    assert cd == cd0 and sc.raw == sc0.raw
+
+
+@pytest.mark.slow
+def test_peak_memory_stays_bounded_over_a_long_run(tmp_path):
+    """20 s of coast-down (100 chunks) in a fresh process: peak RSS < 1 GB, and the per-chunk
+    buffer is the same as for a 1-chunk run."""
+    code = (
+        "import json, resource, sys\n"
+        "from rotorlanding.coastdown import load_coastdown, run_coastdown\n"
+        "infos = []\n"
+        f"sc, cd = load_coastdown({str(SCEN)!r}, ['operating.t_end=20'])\n"
+        f"s = run_coastdown(sc, cd, {str(tmp_path)!r}, progress=False, plots=False, on_chunk=infos.append)\n"
+        "print(json.dumps({'rss_mb': resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,"
+        " 'buf': max(i['buffer_samples'] for i in infos), 'chunks': len(infos)}))\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    info = json.loads(res.stdout.strip().splitlines()[-1])
+    assert info["chunks"] == 100 and info["buf"] == 0.2 / 1e-4 + 1
+    assert info["rss_mb"] < 1024
