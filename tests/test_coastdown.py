@@ -218,3 +218,26 @@ def test_peak_memory_stays_bounded_over_a_long_run(tmp_path):
     info = json.loads(res.stdout.strip().splitlines()[-1])
     assert info["chunks"] == 100 and info["buf"] == 0.2 / 1e-4 + 1
     assert info["rss_mb"] < 1024
+
+
+def test_solver_failure_keeps_the_reached_part(tmp_path, monkeypatch):
+    import rotorlanding.exudyn_model as em
+
+    real = em.solve
+
+    def failing(model, t0, t1, settings):
+        if t0 < 0.05:
+            return real(model, t0, t1, settings)
+        ok, msg, stats = real(model, t0, 0.5 * (t0 + t1), settings)
+        return False, "forced divergence", stats
+
+    monkeypatch.setattr(em, "solve", failing)
+    summary = _run(tmp_path)
+    assert not summary["complete"] and "forced divergence" in summary["message"]
+    assert summary["t_reached_s"] == pytest.approx(0.075)
+    rs = read_restart(tmp_path / "results.h5")
+    assert rs["chunks"] == 1 and rs["t_s"] == pytest.approx(0.05)  # restart stays at the last full chunk
+    assert read_results(tmp_path / "results.h5")["time_s"][-1] == pytest.approx(0.075)
+    rc = main(["coastdown", str(SCEN), "--out", str(tmp_path), "--resume", "--quiet", "--no-plots"]
+              + [a for kv in SHORT for a in ("--set", kv)])
+    assert rc == 1  # still reported as incomplete
