@@ -1,78 +1,240 @@
-"""Benchmark: wall seconds per simulated second of full-model landings (run on demand).
+"""Benchmark: speed of the full-model landings, Exudyn vs scipy's LSODA (run on demand, not in CI).
 
-Runs each case for --t-end simulated seconds (default 0.5) with the scenario's own solver
-settings, best of --repeat runs, and prints a table (and JSON with --json): wall s per simulated
-s, steps, Newton iterations per step, Jacobian evaluations.
+Cases: the paper's forward-whirl landing (scenarios/paper/forward_whirl_landing.toml: full model,
+both bearings, axial rub, 4 kN thrust, 1 s) and the radial landing at 7000 rpm
+(scenarios/landing_7000rpm.toml, 0.5 s). Per case and variant, one fresh process per run (so peak
+memory is per run), best of --repeat:
 
-With --lsoda S the same equations are also integrated by scipy's LSODA (the independent
-reference right-hand side, rtol 1e-6) for S simulated seconds, and the ratio of wall seconds per
-simulated second is printed side by side.
+- ``exudyn h=<step>``: the model as built by rotorlanding (compiled bearing connector with analytic
+  Jacobians, Newton settings of SolverSettings) at the benchmark step (--step, output period =
+  step);
+- ``exudyn scenario step``: the same at the scenario's own [solver] step;
+- ``exudyn numerical jacobians`` (with --baseline): plain-Python laws, one connector per bearing,
+  Exudyn's numerical Jacobians and Exudyn's default Newton strategy (the state before issue 6),
+  at the scenario's step;
+- ``LSODA``: scipy's LSODA (rtol 1e-6, atol 1e-9) on the same equations, with the leanest RHS
+  we have (the same compiled force kernel, numpy for the linear rotor, tilt from the current
+  state) and its analytic Jacobian (rotorlanding.bearing_kernel.system_forces).
 
-usage: python benchmarks/landing_speed.py [--t-end 0.5] [--repeat 2] [--lsoda 0.05] [--json bench.json]
+Reported per run: wall s per simulated s, steps, Newton iterations (per step), Jacobian
+evaluations, time share of the Python user functions (a separate instrumented run), peak memory
+(ru_maxrss of the run's process), the machine load (1-min load average) at the start; the
+ratio LSODA / Exudyn at the benchmark step. With --convergence: peak contact force and whirl
+frequency at the benchmark step and at half of it (acceptance: < 5 % and < 1 % change).
+
+usage: python benchmarks/landing_speed.py [--step 2e-4] [--repeat 3] [--baseline] [--convergence]
+                                          [--t-end S] [--lsoda-t-end S] [--json bench.json]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import platform
+import resource
+import subprocess
 import sys
+import time
 from pathlib import Path
-
-import rotorlanding
-from rotorlanding.run import simulate
-from rotorlanding.scenario import load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 CASES = {
-    "radial landing 7000 rpm (mu_rad 0.15)": (ROOT / "scenarios" / "landing_7000rpm.toml", []),
-    "combined landing 7000 rpm (4 kN thrust, axial rub)": (
-        ROOT / "scenarios" / "landing_7000rpm.toml", ["axial.f_thrust=4000.0", "amb.drop_axial=true"]),
+    "paper forward-whirl landing (3.3, 7000 rpm, 4 kN, axial rub)": ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml",
+    "radial landing 7000 rpm (mu_rad 0.15)": ROOT / "scenarios" / "landing_7000rpm.toml",
 }
+PRE_ISSUE6_NEWTON = dict(jacobian_per_step=False, newton_contractivity=0.5, newton_max_iterations=25,
+                         adaptive_recovery_iterations=7)  # Exudyn's defaults
+
+
+def _load(path, t_end, step):
+    from rotorlanding.scenario import load_scenario
+
+    sets = [] if t_end is None else [f"operating.t_end={t_end}"]
+    if step is not None:
+        sets += [f"solver.step={step}", f"solver.output_period={step}"]
+    return load_scenario(path, sets)
+
+
+def worker(job: dict) -> dict:
+    """One measurement in this (fresh) process."""
+    load = os.getloadavg()[0]
+    from rotorlanding.landing import build_spec
+
+    sc = _load(job["path"], job.get("t_end"), job.get("step"))
+    spec = build_spec(sc)
+    t_end = sc.t_end
+    out = {"load_1min": load, "simulated_s": t_end, "coordinates": spec.n}
+    if job["kind"] == "lsoda":
+        import numpy as np
+        from scipy.integrate import solve_ivp
+
+        from rotorlanding.bearing_kernel import system_forces
+        from rotorlanding.reference import mass_matrix
+
+        f, jac = system_forces(spec)
+        n = spec.n
+        minv = np.linalg.inv(mass_matrix(spec))
+        calls = [0.0, 0]
+
+        def rhs(t, y):
+            t0 = time.perf_counter()
+            r = np.concatenate([y[n:], minv @ f(t, y[:n], y[n:])])
+            calls[0] += time.perf_counter() - t0
+            calls[1] += 1
+            return r
+
+        def jfirst(t, y):
+            Jq, Jv = jac(t, y[:n], y[n:])
+            J = np.zeros((2 * n, 2 * n))
+            J[:n, n:] = np.eye(n)
+            J[n:, :n] = minv @ Jq
+            J[n:, n:] = minv @ Jv
+            return J
+
+        q0, v0 = spec.initial_state()
+        rhs(0.0, np.concatenate([q0, v0]))  # compile/load the kernel outside the timing
+        calls[:] = [0.0, 0]
+        w0 = time.perf_counter()
+        sol = solve_ivp(rhs, (0.0, t_end), np.concatenate([q0, v0]), method="LSODA", rtol=1e-6, atol=1e-9,
+                        jac=jfirst if job.get("jac", True) else None)
+        wall = time.perf_counter() - w0
+        out.update(wall_s=wall, complete=bool(sol.success), steps=len(sol.t) - 1, rhs_evaluations=int(sol.nfev),
+                   jacobians=int(sol.njev), lu_decompositions=int(sol.nlu), user_function_share=calls[0] / wall)
+    else:
+        import exudyn as exu  # noqa: F401
+
+        from rotorlanding.exudyn_model import SolverSettings, build_exudyn, solve
+
+        analytic = job["kind"] == "exudyn"
+        settings = SolverSettings.from_spec(spec)
+        if not analytic:
+            for k, v in PRE_ISSUE6_NEWTON.items():
+                setattr(settings, k, v)
+        acc = {} if job.get("instrument") else None
+        model = build_exudyn(spec, analytic_jacobian=analytic, merge_connectors=analytic, instrument=acc)
+        ok, msg, st = solve(model, 0.0, t_end, settings)
+        out.update(wall_s=st["wall_s"], complete=ok, steps=st["steps"], newton_iterations=st["newton_iterations"],
+                   jacobians=st["jacobians"], step_s=settings.step)
+        if acc is not None:
+            out["user_function_s"] = {k: v[0] for k, v in acc.items()}
+            out["user_function_calls"] = {k: v[1] for k, v in acc.items()}
+            out["user_function_share"] = sum(v[0] for v in acc.values()) / st["wall_s"]
+    out["wall_s_per_simulated_s"] = out["wall_s"] / t_end
+    out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    return out
+
+
+def run_job(job: dict) -> dict:
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    r = subprocess.run([sys.executable, __file__, "--worker", json.dumps(job)], capture_output=True, text=True,
+                       env=env, cwd=ROOT)
+    if r.returncode != 0:
+        raise RuntimeError(f"worker failed: {job}\n{r.stderr[-2000:]}")
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def best_of(job: dict, repeat: int) -> dict:
+    runs = [run_job(job) for _ in range(repeat)]
+    best = min(runs, key=lambda r: r["wall_s"])
+    best["wall_s_per_simulated_s_all"] = [r["wall_s_per_simulated_s"] for r in runs]
+    best["load_1min_all"] = [r["load_1min"] for r in runs]
+    best["peak_rss_mb"] = max(r["peak_rss_mb"] for r in runs)
+    if job["kind"] != "lsoda":
+        inst = run_job(dict(job, instrument=True))
+        for k in ("user_function_share", "user_function_s", "user_function_calls"):
+            best[k] = inst[k]
+        best["instrumented_wall_s"] = inst["wall_s"]
+    return best
+
+
+def convergence(path, step, t_end) -> dict:
+    """Peak contact force and whirl frequency at step and step/2 (same rule as step_convergence.py)."""
+    sys.path.insert(0, str(Path(__file__).parent))
+    import tempfile
+
+    import step_convergence
+
+    with tempfile.TemporaryDirectory() as d:
+        out = Path(d) / "conv.json"
+        args = [str(path), "--steps", f"{step},{step / 2}", "--json", str(out)]
+        if t_end is not None:
+            args += ["--t-end", str(t_end)]
+        step_convergence.main(args)
+        coarse, fine = json.loads(out.read_text())
+    return {"step_s": step, "half_step_s": step / 2, "peak_force_n": [coarse["peak_force_n"], fine["peak_force_n"]],
+            "whirl": [coarse["whirl"], fine["whirl"]], "whirl_hz": [coarse["whirl_hz"], fine["whirl_hz"]],
+            "peak_force_change": coarse["peak_force_change_on_halving"],
+            "whirl_frequency_change": coarse["whirl_change_on_halving"],
+            "energy_error": [coarse["energy_error"], fine["energy_error"]]}
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser()
-    ap.add_argument("--t-end", type=float, default=0.5)
-    ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--worker", help=argparse.SUPPRESS)
+    ap.add_argument("--step", type=float, default=2e-4, help="benchmark step [s] (output period = step)")
+    ap.add_argument("--t-end", type=float, default=None, help="simulated seconds (default: the scenario's t_end)")
+    ap.add_argument("--lsoda-t-end", type=float, default=None, help="simulated seconds for LSODA (default: --t-end)")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--baseline", action="store_true", help="also the pre-issue-6 model (numerical Jacobians)")
+    ap.add_argument("--no-lsoda", action="store_true")
+    ap.add_argument("--convergence", action="store_true", help="also peak force / whirl at step and step/2")
+    ap.add_argument("--cases", default="all", help="'all' or comma-separated indices into the case list")
     ap.add_argument("--json")
-    ap.add_argument("--lsoda", type=float, default=0.0, help="simulated seconds for the LSODA comparison (0: skip)")
     a = ap.parse_args(argv)
-    rows = []
-    for name, (path, sets) in CASES.items():
-        best = None
-        for _ in range(a.repeat):
-            sc = load_scenario(path, sets + [f"operating.t_end={a.t_end}"])
-            spec, t, q, v, info = simulate(sc, progress=False)
-            if best is None or info["wall_s"] < best["wall_s"]:
-                best = dict(info, step_s=sc.solver.step, n_coordinates=spec.n)
-        lsoda = None
-        if a.lsoda > 0:
-            import time
+    if a.worker:
+        print(json.dumps(worker(json.loads(a.worker))))
+        return 0
+    import rotorlanding
 
-            from rotorlanding.landing import build_spec
-            from rotorlanding.reference import simulate_reference
-
-            spec_l = build_spec(load_scenario(path, sets + [f"operating.t_end={a.lsoda}"]))
-            w0 = time.perf_counter()
-            simulate_reference(spec_l, a.lsoda, rtol=1e-6, atol=1e-9)
-            lsoda = (time.perf_counter() - w0) / a.lsoda
-        rows.append({"case": name, "simulated_s": a.t_end, "wall_s": best["wall_s"],
-                     "lsoda_wall_s_per_simulated_s": lsoda,
-                     "wall_s_per_simulated_s": best["wall_s"] / a.t_end, "step_s": best["step_s"],
-                     "steps": best["steps"], "newton_iterations_per_step": best["newton_iterations"] / best["steps"],
-                     "jacobians": best["jacobians"], "coordinates": best["n_coordinates"],
-                     "complete": best["complete"]})
-    print(f"rotorlanding {rotorlanding.__version__}, Python {platform.python_version()}, best of {a.repeat}")
-    print(f"{'case':52s} {'s/s':>6} {'step':>8} {'steps':>7} {'it/step':>7} {'jac':>6} {'LSODA s/s':>9} {'ratio':>6}")
-    for r in rows:
-        ls = r["lsoda_wall_s_per_simulated_s"]
-        extra = f" {ls:9.1f} {ls / r['wall_s_per_simulated_s']:6.1f}" if ls else ""
-        print(f"{r['case']:52s} {r['wall_s_per_simulated_s']:6.2f} {r['step_s']:8.1e} {r['steps']:7d} "
-              f"{r['newton_iterations_per_step']:7.2f} {r['jacobians']:6d}{extra}")
+    cases = list(CASES.items())
+    if a.cases != "all":
+        cases = [cases[int(i)] for i in a.cases.split(",")]
+    report = {"rotorlanding": rotorlanding.__version__, "python": platform.python_version(),
+              "cpus": os.cpu_count(), "repeat": a.repeat, "step_s": a.step, "cases": []}
+    for name, path in cases:
+        rows = {}
+        base = {"path": str(path), "t_end": a.t_end}
+        rows[f"exudyn h={a.step:g}"] = best_of(dict(base, kind="exudyn", step=a.step), a.repeat)
+        rows["exudyn scenario step"] = best_of(dict(base, kind="exudyn"), a.repeat)
+        if a.baseline:
+            rows["exudyn numerical jacobians (before)"] = best_of(dict(base, kind="numerical"), max(1, a.repeat - 1))
+        if not a.no_lsoda:
+            rows["LSODA rtol 1e-6"] = best_of(dict(base, kind="lsoda", t_end=a.lsoda_t_end or a.t_end),
+                                              max(1, a.repeat - 1))
+        case = {"case": name, "scenario": str(path.relative_to(ROOT)), "runs": rows}
+        ex = rows[f"exudyn h={a.step:g}"]
+        if "LSODA rtol 1e-6" in rows:
+            case["lsoda_over_exudyn"] = rows["LSODA rtol 1e-6"]["wall_s_per_simulated_s"] / ex["wall_s_per_simulated_s"]
+        if a.convergence:
+            case["convergence"] = convergence(path, a.step, a.t_end)
+        report["cases"].append(case)
+        _print_case(case)
     if a.json:
-        Path(a.json).write_text(json.dumps(rows, indent=2))
+        Path(a.json).write_text(json.dumps(report, indent=2))
     return 0
+
+
+def _print_case(case):
+    print(f"\n{case['case']}  [{case['scenario']}]")
+    print(f"{'variant':38s} {'s/s':>6} {'step':>8} {'steps':>6} {'it/step':>7} {'jac':>6} {'uf %':>5} {'MB':>5} "
+          f"{'load':>5}")
+    for name, r in case["runs"].items():
+        its = r.get("newton_iterations")
+        itps = f"{its / r['steps']:7.2f}" if its else f"{'-':>7}"
+        step = f"{r['step_s']:8.1e}" if r.get("step_s") else f"{'adapt':>8}"
+        print(f"{name:38s} {r['wall_s_per_simulated_s']:6.2f} {step} {r['steps']:6d} {itps} {r['jacobians']:6d} "
+              f"{100 * r['user_function_share']:5.0f} {r['peak_rss_mb']:5.0f} {r['load_1min']:5.2f}"
+              + (f"  (nfev {r['rhs_evaluations']})" if "rhs_evaluations" in r else ""))
+    if "lsoda_over_exudyn" in case:
+        print(f"LSODA / Exudyn (wall per simulated s): {case['lsoda_over_exudyn']:.1f}x")
+    c = case.get("convergence")
+    if c:
+        print(f"step convergence h={c['step_s']:g} -> {c['half_step_s']:g}: peak force {c['peak_force_n'][0]:.0f} -> "
+              f"{c['peak_force_n'][1]:.0f} N ({100 * c['peak_force_change']:.2f} %), whirl {c['whirl'][0]} "
+              f"{c['whirl_hz'][0]} -> {c['whirl'][1]} {c['whirl_hz'][1]} Hz"
+              + (f" ({100 * c['whirl_frequency_change']:.2f} %)" if c['whirl_frequency_change'] is not None else ""))
+    sys.stdout.flush()
 
 
 if __name__ == "__main__":

@@ -425,3 +425,204 @@ def bearing_functions(spec: LandingSpec, b: BearingSpec, tilt: list | None = Non
     jacobian(None, 0.0, 0, z, z, 1.0, 1.0)
 
     return force, jacobian, P
+
+
+# ---------------------------------------------------------------------------------------------
+# All bearings (+ the spin/axial rotor loads) in one connector: one Python call per residual.
+
+(R_ON, R_CLAX, R_DM, R_KCB, R_KWS, R_KHS, R_CAX, R_CW1, R_CW2, R_WIND, R_DRIVE, R_GAIN, R_OMEGA0, R_KAXAMB,
+ R_CAXAMB, R_SIZE) = range(16)
+
+
+def rotor_load_parameters(spec: LandingSpec, include: bool) -> np.ndarray:
+    """Spin and axial loads of forces.rotor_forces (windage, drive, axial contact, axial AMB) as a
+    float vector; ``include`` False leaves them to a separate rotor-loads connector."""
+    sc = spec.scenario
+    a = sc.axial
+    R = np.zeros(R_SIZE)
+    R[R_ON] = 1.0 if include else 0.0
+    R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX] = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
+    R[R_CW1], R[R_CW2] = sc.spin.c_w1, sc.spin.c_w2
+    R[R_WIND] = 1.0 if sc.effects["windage"] else 0.0
+    R[R_DRIVE] = 1.0 if sc.spin.drive == "constant" else 0.0
+    R[R_GAIN], R[R_OMEGA0] = sc.spin.drive_gain, sc.omega0
+    R[R_KAXAMB], R[R_CAXAMB] = sc.amb.axial_stiffness, sc.amb.axial_damping
+    return R
+
+
+@_njit
+def landing_rhs(PB, IDX, R, q, v, tilts, thrust, amb_axial, out):
+    """Generalized forces of all bearings (+ spin/axial rotor loads when R[R_ON]) on the merged
+    connector's local coordinates. IDX[b] = local indices of BEARING_LOCAL of bearing b."""
+    for i in range(out.shape[0]):
+        out[i] = 0.0
+    for b in range(PB.shape[0]):
+        ix = IDX[b]
+        r = bearing_rhs(PB[b], q[ix[0]], q[ix[1]], q[ix[2]], q[ix[3]], q[ix[4]], q[ix[5]], q[ix[6]], q[ix[7]],
+                        q[ix[8]], v[ix[0]], v[ix[1]], v[ix[2]], v[ix[3]], v[ix[4]], v[ix[5]], v[ix[6]], v[ix[7]],
+                        v[ix[8]], tilts[b, 0], tilts[b, 1])
+        for k in range(9):
+            out[ix[k]] += r[k]
+    if R[R_ON] != 0.0:
+        i_th = IDX[0, 2]
+        i_ax = IDX[0, 3]
+        om = v[i_th]
+        tq = 0.0
+        if R[R_WIND] != 0.0:
+            tq -= (R[R_CW1] + R[R_CW2] * abs(om)) * om
+        if R[R_DRIVE] != 0.0:
+            tq += R[R_GAIN] * (R[R_OMEGA0] - om)
+        out[i_th] += tq
+        x = q[i_ax]
+        xd = v[i_ax]
+        fa = thrust + _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
+        if amb_axial:
+            fa += -thrust - R[R_KAXAMB] * x - R[R_CAXAMB] * xd
+        out[i_ax] += fa
+    return out
+
+
+@_njit
+def landing_jacobian(PB, IDX, R, q, v, tilts, amb_axial, fq, fv, out):
+    """out = -(fq dF/dq + fv dF/dv) of landing_rhs."""
+    out[:, :] = 0.0
+    jb = np.zeros((9, 9))
+    qb = np.zeros(9)
+    vb = np.zeros(9)
+    for b in range(PB.shape[0]):
+        ix = IDX[b]
+        for k in range(9):
+            qb[k] = q[ix[k]]
+            vb[k] = v[ix[k]]
+        bearing_jacobian(PB[b], qb, vb, tilts[b, 0], tilts[b, 1], fq, fv, jb)
+        for i in range(9):
+            for j in range(9):
+                out[ix[i], ix[j]] += jb[i, j]
+    if R[R_ON] != 0.0:
+        i_th = IDX[0, 2]
+        i_ax = IDX[0, 3]
+        om = v[i_th]
+        dt = 0.0
+        if R[R_WIND] != 0.0:
+            dt -= R[R_CW1] + 2.0 * R[R_CW2] * abs(om)
+        if R[R_DRIVE] != 0.0:
+            dt -= R[R_GAIN]
+        out[i_th, i_th] -= fv * dt
+        x = q[i_ax]
+        xd = v[i_ax]
+        f = _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
+        kx = 0.0
+        cx = 0.0
+        if f != 0.0:
+            if abs(x) - R[R_CLAX] <= R[R_DM]:
+                kx = 1.0 / (1.0 / R[R_KCB] + 1.0 / R[R_KWS])
+            else:
+                kx = 1.0 / (1.0 / R[R_KCB] + 1.0 / R[R_KHS])
+            cx = R[R_CAX]
+        if amb_axial:
+            kx += R[R_KAXAMB]
+            cx += R[R_CAXAMB]
+        out[i_ax, i_ax] += fq * kx + fv * cx
+    return out
+
+
+def landing_functions(spec: LandingSpec, local_index: list, tilts: np.ndarray, include_rotor_loads: bool):
+    """(force, jacobian) user functions of one ObjectGenericODE2 over all bearings.
+
+    local_index[b]: the 9 local indices (BEARING_LOCAL order) of bearing b in the connector's
+    coordinates; tilts: (n_bearings, 2) array that the pre-step updates in place (rotor tilt at
+    the axial face; zeros for bearings without axial rub); include_rotor_loads: also apply the
+    spin and axial rotor loads of forces.rotor_forces (only valid when those need no lateral
+    coordinates)."""
+    PB = np.array([bearing_parameters(spec, b) for b in spec.bearings])
+    IDX = np.array(local_index, dtype=np.int64)
+    R = rotor_load_parameters(spec, include_rotor_loads)
+    n = int(IDX.max()) + 1
+    out = np.zeros(n)
+    jout = np.zeros((n, n))
+    rhs, jac, asarray = landing_rhs, landing_jacobian, np.asarray
+    amb = spec.scenario.amb
+    t_drop, drop_axial = amb.t_drop, amb.drop_axial
+    thrust = spec.thrust
+
+    def force(mbs, t, item, q, q_t):
+        return rhs(PB, IDX, R, asarray(q), asarray(q_t), tilts, thrust(t), t < t_drop or not drop_axial,
+                   out).tolist()
+
+    def jacobian(mbs, t, item, q, q_t, fq, fv):
+        return jac(PB, IDX, R, asarray(q), asarray(q_t), tilts, t < t_drop or not drop_axial, fq, fv, jout)
+
+    z = [0.0] * n
+    force(None, 0.0, 0, z, z)
+    jacobian(None, 0.0, 0, z, z, 1.0, 1.0)
+    return force, jacobian
+
+
+def system_forces(spec: LandingSpec):
+    """The whole landing right-hand side f(t, q, v) of M q'' = f in the spec's coordinates, built
+    from the same compiled kernel (a lean RHS for scipy's LSODA in the speed benchmark; the
+    tilt at the axial face is evaluated from the current state). Returns (f, jac) with
+    jac(t, q, v) -> (df/dq, df/dv) (the tilt's own dependence on q is left out of the Jacobian).
+    ``tests/test_bearing_jacobian.py`` checks f against rotorlanding.reference.generalized_forces."""
+    from .forces import rotor_forces, rotor_loads_need_lateral
+
+    sc = spec.scenario
+    nl = spec.n_lat
+    n = spec.n
+    need_lateral = rotor_loads_need_lateral(spec, False)
+    IDX = np.array([[b.i_station, b.i_station + 1, spec.i_theta, spec.i_axial, b.i_race, b.i_race + 1, b.i_race + 2,
+                     b.i_race + 3, b.i_race + 4] for b in spec.bearings], dtype=np.int64)
+    PB = np.array([bearing_parameters(spec, b) for b in spec.bearings])
+    R = rotor_load_parameters(spec, not need_lateral)
+    rub = [bool(P[P_RUB]) for P in PB]
+    TA = np.array([b.tilt_alpha for b in spec.bearings])
+    TB = np.array([b.tilt_beta for b in spec.bearings])
+    tilts = np.zeros((len(spec.bearings), 2))
+    K, C, G, fg = spec.K, spec.C, spec.G, spec.f_gravity
+    gyro = sc.effects["gyroscopic"]
+    frot = rotor_forces(spec, gyroscopic_in_user_function=False) if need_lateral else None
+    rot_idx = list(range(nl)) + [spec.i_theta, spec.i_axial]
+    amb = sc.amb
+    out = np.zeros(n)
+    jout = np.zeros((n, n))
+
+    def f(t, q, v):
+        ql = q[:nl]
+        vl = v[:nl]
+        for k in range(len(rub)):
+            if rub[k]:
+                tilts[k, 0] = TA[k] @ ql
+                tilts[k, 1] = TB[k] @ ql
+        landing_rhs(PB, IDX, R, q, v, tilts, spec.thrust(t), t < amb.t_drop or not amb.drop_axial, out)
+        res = out.copy()
+        lin = fg - K @ ql - C @ vl
+        if gyro:
+            lin -= v[spec.i_theta] * (G @ vl)
+        res[:nl] += lin
+        if frot is not None:
+            res[rot_idx] += frot(t, q[rot_idx].tolist(), v[rot_idx].tolist())
+        return res
+
+    def jac(t, q, v):
+        ql = q[:nl]
+        for k in range(len(rub)):
+            if rub[k]:
+                tilts[k, 0] = TA[k] @ ql
+                tilts[k, 1] = TB[k] @ ql
+        amb_ax = t < amb.t_drop or not amb.drop_axial
+        Jq = -landing_jacobian(PB, IDX, R, q, v, tilts, amb_ax, 1.0, 0.0, jout).copy()
+        Jv = -landing_jacobian(PB, IDX, R, q, v, tilts, amb_ax, 0.0, 1.0, jout).copy()
+        Jq[:nl, :nl] -= K
+        Jv[:nl, :nl] -= C
+        if gyro:
+            Jv[:nl, :nl] -= v[spec.i_theta] * G
+            Jv[:nl, spec.i_theta] -= G @ v[:nl]
+        if frot is not None:
+            from .forces import rotor_loads_jacobian
+
+            jr = rotor_loads_jacobian(spec, gyroscopic_in_user_function=False)
+            Jq[np.ix_(rot_idx, rot_idx)] -= jr(t, q[rot_idx].tolist(), v[rot_idx].tolist(), 1.0, 0.0)
+            Jv[np.ix_(rot_idx, rot_idx)] -= jr(t, q[rot_idx].tolist(), v[rot_idx].tolist(), 0.0, 1.0)
+        return Jq, Jv
+
+    return f, jac

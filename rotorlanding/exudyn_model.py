@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bearing_kernel import bearing_functions
+from .bearing_kernel import bearing_functions, landing_functions
 from .forces import BEARING_LOCAL, bearing_forces, rotor_forces, rotor_loads_jacobian, rotor_loads_need_lateral
 from .landing import LandingSpec
 
@@ -36,6 +36,16 @@ class SolverSettings:
     output_period: float
     newton_relative_tolerance: float = 1e-6
     newton_absolute_tolerance: float = 1e-8
+    # Newton strategy (measured on the paper's forward-whirl landing, benchmarks/landing_speed.py):
+    # with analytic Jacobians a Jacobian costs about 3 residual evaluations, so it pays to
+    # refresh it at the start of every step and whenever one modified-Newton iteration reduces
+    # the residual by less than 5x (Exudyn's default 2x let it crawl at a contraction of ~0.4 for
+    # 8-10 iterations per step); a step whose Newton fails after 12 iterations is retried at half
+    # the step (adaptive step), and the step grows back after 10 steps with < 12 iterations
+    jacobian_per_step: bool = True
+    newton_contractivity: float = 0.2
+    newton_max_iterations: int = 12
+    adaptive_recovery_iterations: int = 12
 
     @classmethod
     def from_spec(cls, spec: LandingSpec) -> "SolverSettings":
@@ -53,6 +63,11 @@ class SolverSettings:
         ti.newton.useModifiedNewton = self.modified_newton
         ti.newton.relativeTolerance = self.newton_relative_tolerance
         ti.newton.absoluteTolerance = self.newton_absolute_tolerance
+        ti.newton.modifiedNewtonJacUpdatePerStep = self.jacobian_per_step
+        ti.newton.modifiedNewtonContractivity = self.newton_contractivity
+        ti.newton.maxIterations = self.newton_max_iterations
+        ti.adaptiveStep = True
+        ti.adaptiveStepRecoveryIterations = self.adaptive_recovery_iterations
         ti.verboseMode = 0
         ss.solution.file.write = False
         ss.solution.sensors.writePeriod = self.output_period
@@ -109,11 +124,32 @@ class PreStep:
         return True
 
 
-def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool = True) -> ExudynModel:
+def _timed(f, acc: dict, key: str):
+    """f wrapped to accumulate its wall time and call count in acc[key] (benchmark only)."""
+    from time import perf_counter
+
+    acc.setdefault(key, [0.0, 0])
+
+    def g(*args):
+        t0 = perf_counter()
+        r = f(*args)
+        a = acc[key]
+        a[0] += perf_counter() - t0
+        a[1] += 1
+        return r
+
+    return g
+
+
+def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool = True,
+                 merge_connectors: bool = True, instrument: dict | None = None) -> ExudynModel:
     """The Exudyn system of the landing. ``analytic_jacobian``: compiled bearing connectors with
     analytic Jacobians (:mod:`rotorlanding.bearing_kernel`) and the analytic Jacobian of the rotor
     loads; False gives the plain-Python laws with Exudyn's numerical differentiation (slower, for
-    comparison)."""
+    comparison); ``merge_connectors`` (with analytic_jacobian): all bearings and the spin/axial rotor
+    loads in one connector (one Python call per residual instead of three). ``instrument``: a dict
+    that receives {"force" | "jacobian" | "prestep": [seconds, calls]} of all Python user functions
+    (benchmarks; the timers add ~0.2 us per call)."""
     import exudyn as exu
     from exudyn.itemInterface import (NodeGenericODE2, NodePoint2D, NodeRigidBody2D, ObjectGenericODE2,
                                       ObjectMassPoint2D, ObjectRigidBody2D, SensorNode)
@@ -124,6 +160,25 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
     v0 = np.asarray(v0, float)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
+    if instrument is not None:
+        mbs_real = mbs
+
+        class _Timed:
+            def AddObject(self, item):
+                if isinstance(item, ObjectGenericODE2):
+                    if item.forceUserFunction != 0:
+                        item.forceUserFunction = _timed(item.forceUserFunction, instrument, "force")
+                    if item.jacobianUserFunction != 0:
+                        item.jacobianUserFunction = _timed(item.jacobianUserFunction, instrument, "jacobian")
+                return mbs_real.AddObject(item)
+
+            def SetPreStepUserFunction(self, f):
+                return mbs_real.SetPreStepUserFunction(_timed(f, instrument, "prestep"))
+
+            def __getattr__(self, name):
+                return getattr(mbs_real, name)
+
+        mbs = _Timed()
     nodes = []  # (node number, slice)
 
     def point(i):
@@ -170,24 +225,40 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
     # the rotor itself is linear (Exudyn differentiates it exactly); its state-dependent loads
     # (axial model, windage, drive, AMB, unbalance) sit in a zero-mass connector over the few
     # coordinates they use, so numerical Jacobians stay cheap
-    rotor_obj = mbs.AddObject(ObjectGenericODE2(nodeNumbers=lateral_nodes + [spin_node], massMatrix=M,
-                                                stiffnessMatrix=K, dampingMatrix=C, forceVector=fvec.tolist()))
-    load_nodes = (lateral_nodes if rotor_loads_need_lateral(spec, False) else []) + [spin_node]
-    nl = (spec.n_lat if len(load_nodes) > 1 else 0) + 2
-    extra = {}
+    rotor_extra = {}
     if analytic_jacobian:
-        jrot = rotor_loads_jacobian(spec, gyroscopic_in_user_function=False)
+        # with a jacobianUserFunction Exudyn adds K and D to the Jacobian directly; without one it
+        # costs ~30 us per Jacobian for the 24 x 24 rotor (measured, tests/test_bearing_jacobian.py
+        # checks both give the same system Jacobian)
+        zeros_rot = np.zeros((n_rot, n_rot))
 
-        def rotor_jac(mbs_, t, item, q, q_t, fq, fv):
-            return jrot(t, q, q_t, fq, fv)
+        def rotor_jac0(mbs_, t, item, q, q_t, fq, fv):
+            return zeros_rot
 
-        extra["jacobianUserFunction"] = rotor_jac
-    mbs.AddObject(ObjectGenericODE2(nodeNumbers=load_nodes, massMatrix=np.zeros((nl, nl)),
-                                    stiffnessMatrix=np.zeros((nl, nl)), dampingMatrix=np.zeros((nl, nl)),
-                                    forceVector=[0.0] * nl, forceUserFunction=rotor_uf, **extra))
+        rotor_extra["jacobianUserFunction"] = rotor_jac0
+    rotor_obj = mbs.AddObject(ObjectGenericODE2(nodeNumbers=lateral_nodes + [spin_node], massMatrix=M,
+                                                stiffnessMatrix=K, dampingMatrix=C, forceVector=fvec.tolist(),
+                                                **rotor_extra))
+    need_lateral = rotor_loads_need_lateral(spec, False)
+    merged = analytic_jacobian and merge_connectors
+    if not merged or need_lateral:
+        load_nodes = (lateral_nodes if need_lateral else []) + [spin_node]
+        nl = (spec.n_lat if need_lateral else 0) + 2
+        extra = {}
+        if analytic_jacobian:
+            jrot = rotor_loads_jacobian(spec, gyroscopic_in_user_function=False)
+
+            def rotor_jac(mbs_, t, item, q, q_t, fq, fv):
+                return jrot(t, q, q_t, fq, fv)
+
+            extra["jacobianUserFunction"] = rotor_jac
+        mbs.AddObject(ObjectGenericODE2(nodeNumbers=load_nodes, massMatrix=np.zeros((nl, nl)),
+                                        stiffnessMatrix=np.zeros((nl, nl)), dampingMatrix=np.zeros((nl, nl)),
+                                        forceVector=[0.0] * nl, forceUserFunction=rotor_uf, **extra))
     pre = PreStep(rotor_obj, spin_node, C - (spec.scenario.omega0 * G if gyro else 0.0), G, gyro)
     mbs.SetPreStepUserFunction(pre)
 
+    race_outer = []
     for b in spec.bearings:
         p = b.params
         i = b.i_race
@@ -199,24 +270,55 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
                                         nodeNumber=race))
         outer = point(i + 3)
         mbs.AddObject(ObjectMassPoint2D(mass=p.outer_race_mass, nodeNumber=outer))
-        tilt = None
-        if p.axial_face and spec.scenario.effects["axial_rub"]:
-            tilt = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
-            pre.tilts.append((tilt, b.tilt_alpha, b.tilt_beta, spec.n_lat))
-        lat = [station_nodes[spec.stations.index(b.station)]]
-        extra = {}
-        if analytic_jacobian:
-            bearing_uf, extra["jacobianUserFunction"], _ = bearing_functions(spec, b, tilt)
-        else:
-            fb = bearing_forces(spec, b, tilt)
+        race_outer.append((race, outer))
 
-            def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
-                return fb(t, q, q_t)
+    def rub_tilt(b):
+        return b.params.axial_face and spec.scenario.effects["axial_rub"]
 
-        n = len(BEARING_LOCAL)
-        mbs.AddObject(ObjectGenericODE2(nodeNumbers=lat + [spin_node, race, outer], massMatrix=np.zeros((n, n)),
+    if merged:
+        # one connector for all bearings (and the spin/axial rotor loads): one Python call per
+        # residual, one analytic Jacobian call per Jacobian
+        st_nodes = []
+        for b in spec.bearings:
+            nd = station_nodes[spec.stations.index(b.station)]
+            if nd not in st_nodes:
+                st_nodes.append(nd)
+        ns = 2 * len(st_nodes)
+        tilts = np.zeros((len(spec.bearings), 2))
+        local = []
+        for k, b in enumerate(spec.bearings):
+            s0 = 2 * st_nodes.index(station_nodes[spec.stations.index(b.station)])
+            r0 = ns + 2 + 5 * k
+            local.append([s0, s0 + 1, ns, ns + 1, r0, r0 + 1, r0 + 2, r0 + 3, r0 + 4])
+            if rub_tilt(b):
+                tilts[k] = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
+                pre.tilts.append((tilts[k], b.tilt_alpha, b.tilt_beta, spec.n_lat))
+        fl, jl = landing_functions(spec, local, tilts, include_rotor_loads=not need_lateral)
+        conn = st_nodes + [spin_node] + [nd for ro in race_outer for nd in ro]
+        n = ns + 2 + 5 * len(spec.bearings)
+        mbs.AddObject(ObjectGenericODE2(nodeNumbers=conn, massMatrix=np.zeros((n, n)),
                                         stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
-                                        forceVector=[0.0] * n, forceUserFunction=bearing_uf, **extra))
+                                        forceVector=[0.0] * n, forceUserFunction=fl, jacobianUserFunction=jl))
+    else:
+        for b, (race, outer) in zip(spec.bearings, race_outer):
+            tilt = None
+            if rub_tilt(b):
+                tilt = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
+                pre.tilts.append((tilt, b.tilt_alpha, b.tilt_beta, spec.n_lat))
+            lat = [station_nodes[spec.stations.index(b.station)]]
+            extra = {}
+            if analytic_jacobian:
+                bearing_uf, extra["jacobianUserFunction"], _ = bearing_functions(spec, b, tilt)
+            else:
+                fb = bearing_forces(spec, b, tilt)
+
+                def bearing_uf(mbs_, t, item, q, q_t, fb=fb):
+                    return fb(t, q, q_t)
+
+            n = len(BEARING_LOCAL)
+            mbs.AddObject(ObjectGenericODE2(nodeNumbers=lat + [spin_node, race, outer], massMatrix=np.zeros((n, n)),
+                                            stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
+                                            forceVector=[0.0] * n, forceUserFunction=bearing_uf, **extra))
 
     import exudyn as exu  # noqa: F811 (output types)
 
@@ -228,6 +330,8 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
                                       outputVariableType=exu.OutputVariableType.Coordinates_t))
         sensors.append((sp, sv, sl))
     mbs.Assemble()
+    if instrument is not None:
+        mbs = mbs_real
     return ExudynModel(SC, mbs, spec, nodes, sensors, pre)
 
 

@@ -61,16 +61,19 @@ def test_bad_run_input_is_one_line_exit_2_and_writes_nothing(tmp_path, capsys, a
 
 
 def test_solver_failure_keeps_results_and_exits_nonzero(tmp_path, capsys, monkeypatch):
-    import rotorlanding.forces as forces
+    import rotorlanding.bearing_kernel as kernel
 
     calls = {"n": 0}
-    real = forces.windage_torque
+    real = kernel.landing_rhs
 
-    def poisoned(omega, c1, c2):  # the run diverges after a few hundred residual evaluations
+    def poisoned(*args):  # the run diverges after a few thousand residual evaluations
         calls["n"] += 1
-        return float("nan") if calls["n"] > 3000 else real(omega, c1, c2)
+        out = real(*args)
+        if calls["n"] > 3000:
+            out[0] = float("nan")
+        return out
 
-    monkeypatch.setattr(forces, "windage_torque", poisoned)
+    monkeypatch.setattr(kernel, "landing_rhs", poisoned)
     out = tmp_path / "fail"
     assert main(["run", str(SCEN), "--out", str(out), "--t-end", "0.05", "--quiet", "--no-plots"]) == 1
     summary = json.loads((out / "summary.json").read_text())
