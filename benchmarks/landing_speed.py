@@ -6,8 +6,8 @@ both bearings, axial rub, 4 kN thrust, 1 s) and the radial landing at 7000 rpm
 memory is per run), best of --repeat:
 
 - ``exudyn h=<step>``: the model as built by rotorlanding (compiled bearing connector with analytic
-  Jacobians, Newton settings of SolverSettings) at the benchmark step (--step, output period =
-  step);
+  Jacobians, Newton settings of SolverSettings) at the case's benchmark step (CASES, or --step;
+  output period = step);
 - ``exudyn scenario step``: the same at the scenario's own [solver] step;
 - ``exudyn numerical jacobians`` (with --baseline): plain-Python laws, one connector per bearing,
   Exudyn's numerical Jacobians and Exudyn's default Newton strategy (the state before issue 6),
@@ -22,7 +22,7 @@ evaluations, time share of the Python user functions (a separate instrumented ru
 ratio LSODA / Exudyn at the benchmark step. With --convergence: peak contact force and whirl
 frequency at the benchmark step and at half of it (acceptance: < 5 % and < 1 % change).
 
-usage: python benchmarks/landing_speed.py [--step 2e-4] [--repeat 3] [--baseline] [--convergence]
+usage: python benchmarks/landing_speed.py [--step S] [--repeat 3] [--baseline] [--convergence]
                                           [--t-end S] [--lsoda-t-end S] [--json bench.json]
 """
 
@@ -39,9 +39,14 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+# case: (scenario, benchmark step). The step is the largest power-of-two multiple of the rig's 5e-5 s
+# whose half-step result changes the peak contact force by < 5 % and the whirl frequency by < 1 %
+# (benchmarks/step_convergence.py, 2026-11): forward whirl 2e-4 s (0.13 % / 0.03 %; 4e-4 s: 0.98 % /
+# 0.42 %, energy error 0.17 %); radial landing 1e-4 s (1.05 %; 2e-4 s: 10.6 % on the first impact).
 CASES = {
-    "paper forward-whirl landing (3.3, 7000 rpm, 4 kN, axial rub)": ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml",
-    "radial landing 7000 rpm (mu_rad 0.15)": ROOT / "scenarios" / "landing_7000rpm.toml",
+    "paper forward-whirl landing (3.3, 7000 rpm, 4 kN, axial rub)": (
+        ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml", 2e-4),
+    "radial landing 7000 rpm (mu_rad 0.15)": (ROOT / "scenarios" / "landing_7000rpm.toml", 1e-4),
 }
 PRE_ISSUE6_NEWTON = dict(jacobian_per_step=False, newton_contractivity=0.5, newton_max_iterations=25,
                          adaptive_recovery_iterations=7)  # Exudyn's defaults
@@ -155,14 +160,14 @@ def convergence(path, step, t_end) -> dict:
 
     import step_convergence
 
+    if t_end is None:
+        t_end = _load(path, None, None).t_end
     with tempfile.TemporaryDirectory() as d:
         out = Path(d) / "conv.json"
-        args = [str(path), "--steps", f"{step},{step / 2}", "--json", str(out)]
-        if t_end is not None:
-            args += ["--t-end", str(t_end)]
+        args = [str(path), "--steps", f"{step},{step / 2}", "--json", str(out), "--t-end", str(t_end)]
         step_convergence.main(args)
         coarse, fine = json.loads(out.read_text())
-    return {"step_s": step, "half_step_s": step / 2, "peak_force_n": [coarse["peak_force_n"], fine["peak_force_n"]],
+    return {"step_s": step, "half_step_s": step / 2, "simulated_s": t_end, "peak_force_n": [coarse["peak_force_n"], fine["peak_force_n"]],
             "whirl": [coarse["whirl"], fine["whirl"]], "whirl_hz": [coarse["whirl_hz"], fine["whirl_hz"]],
             "peak_force_change": coarse["peak_force_change_on_halving"],
             "whirl_frequency_change": coarse["whirl_change_on_halving"],
@@ -172,7 +177,8 @@ def convergence(path, step, t_end) -> dict:
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--worker", help=argparse.SUPPRESS)
-    ap.add_argument("--step", type=float, default=2e-4, help="benchmark step [s] (output period = step)")
+    ap.add_argument("--step", type=float, default=None,
+                    help="benchmark step [s] for all cases (default: per case, see CASES; output period = step)")
     ap.add_argument("--t-end", type=float, default=None, help="simulated seconds (default: the scenario's t_end)")
     ap.add_argument("--lsoda-t-end", type=float, default=None, help="simulated seconds for LSODA (default: --t-end)")
     ap.add_argument("--repeat", type=int, default=3)
@@ -191,23 +197,24 @@ def main(argv=None):
     if a.cases != "all":
         cases = [cases[int(i)] for i in a.cases.split(",")]
     report = {"rotorlanding": rotorlanding.__version__, "python": platform.python_version(),
-              "cpus": os.cpu_count(), "repeat": a.repeat, "step_s": a.step, "cases": []}
-    for name, path in cases:
+              "cpus": os.cpu_count(), "repeat": a.repeat, "cases": []}
+    for name, (path, step) in cases:
+        step = a.step or step
         rows = {}
         base = {"path": str(path), "t_end": a.t_end}
-        rows[f"exudyn h={a.step:g}"] = best_of(dict(base, kind="exudyn", step=a.step), a.repeat)
+        rows[f"exudyn h={step:g}"] = best_of(dict(base, kind="exudyn", step=step), a.repeat)
         rows["exudyn scenario step"] = best_of(dict(base, kind="exudyn"), a.repeat)
         if a.baseline:
             rows["exudyn numerical jacobians (before)"] = best_of(dict(base, kind="numerical"), max(1, a.repeat - 1))
         if not a.no_lsoda:
             rows["LSODA rtol 1e-6"] = best_of(dict(base, kind="lsoda", t_end=a.lsoda_t_end or a.t_end),
                                               max(1, a.repeat - 1))
-        case = {"case": name, "scenario": str(path.relative_to(ROOT)), "runs": rows}
-        ex = rows[f"exudyn h={a.step:g}"]
+        case = {"case": name, "scenario": str(path.relative_to(ROOT)), "step_s": step, "runs": rows}
+        ex = rows[f"exudyn h={step:g}"]
         if "LSODA rtol 1e-6" in rows:
             case["lsoda_over_exudyn"] = rows["LSODA rtol 1e-6"]["wall_s_per_simulated_s"] / ex["wall_s_per_simulated_s"]
         if a.convergence:
-            case["convergence"] = convergence(path, a.step, a.t_end)
+            case["convergence"] = convergence(path, step, a.t_end)
         report["cases"].append(case)
         _print_case(case)
     if a.json:

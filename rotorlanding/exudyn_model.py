@@ -7,8 +7,18 @@ Objects (Exudyn 1.13.6, see shared notes):
   windage, drive, axial model) — :func:`rotorlanding.forces.rotor_forces`;
 - inner race: ``NodeRigidBody2D`` + ``ObjectRigidBody2D`` (y, z, spin angle);
 - outer race: ``NodePoint2D`` + ``ObjectMassPoint2D``;
-- per catcher bearing one zero-mass ``ObjectGenericODE2`` connector whose user force applies the
-  paper's laws (contact, axial rub, balls, drag, ribbon, Coulomb) — :func:`rotorlanding.forces.bearing_forces`.
+- one zero-mass ``ObjectGenericODE2`` connector over [bearing stations, spin/axial node, races] whose
+  user force applies the paper's laws of all bearings (contact, axial rub, balls, drag, ribbon,
+  Coulomb) and the spin/axial rotor loads, compiled with numba, with an analytic
+  ``jacobianUserFunction`` — :mod:`rotorlanding.bearing_kernel` (one Python call per residual and
+  one per Jacobian; the rotor loads move to their own connector when they need the lateral
+  coordinates: AMB before the drop, unbalance). ``build_exudyn(..., analytic_jacobian=False)``
+  gives the former layout for comparison: one plain-Python connector per bearing
+  (:func:`rotorlanding.forces.bearing_forces`) with Exudyn's numerical Jacobians.
+
+Speed (paper forward-whirl landing, 1 s, 2 cores; ``benchmarks/landing_speed.py``): Exudyn spends
+its time per Newton iteration (~8 us: residual of all objects, one Python call) and per Jacobian
+(~25 us: 28 x 28 system); the step is the main lever. See SolverSettings for the Newton strategy.
 
 Exudyn's planar (X, Y) is our (y, z). Nodes are added in the LandingSpec coordinate order, so the
 system's ODE2 vector is the spec's q.

@@ -1,10 +1,11 @@
 """Force closures of the landing model: the paper's laws wired to the model's coordinates.
 
 :func:`rotor_forces` and :func:`bearing_forces` return plain-Python closures
-``f(t, q, v) -> list`` over *local* coordinate lists; the Exudyn model wraps each as a user
-function of one ObjectGenericODE2 (one call per bearing per residual evaluation, which is where
-the run time goes), and post-processing re-evaluates the same laws on stored states
-(:mod:`rotorlanding.postprocess`). Hot-path rules: plain floats, no numpy per call, parameters
+``f(t, q, v) -> list`` over *local* coordinate lists; post-processing re-evaluates the laws with
+them on stored states (:mod:`rotorlanding.postprocess`), and the Exudyn model uses them with
+``analytic_jacobian=False`` (one user function per bearing, numerical Jacobians). The solver's
+default path is the compiled equivalent in :mod:`rotorlanding.bearing_kernel` (same
+``user_forces`` laws; tests/test_bearing_jacobian.py checks they agree). Hot-path rules: plain floats, no numpy per call, parameters
 bound once as locals.
 
 Local coordinates
