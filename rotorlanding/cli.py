@@ -262,10 +262,13 @@ def cmd_calibrate(args) -> int:
 
     rows = calibrate(args.space, args.out, workers=args.workers)
     best = rows[0]
-    keys = [k for k in best if "." in k]
-    print(f"{len(rows)} designs; best score {best['score']:.3f} (design {best['design']}); table: "
-          f"{args.out}/calibration.csv")
-    print("best as --set: " + " ".join(f"--set {k}={best[k]!r}" for k in keys))
+    from .calibrate import design_overrides
+
+    keys = [k for k in best if "." in k and not k.endswith("_half_step")]
+    conv = {True: "converged at h/2", False: "NOT converged at h/2", None: "step convergence not checked"}
+    print(f"{len(rows)} designs; best score {best['score']:.3f} (design {best['design']}, "
+          f"{conv[best['converged']]}); table: {args.out}/calibration.csv")
+    print("best as --set: " + " ".join(f"--set {s}" for s in design_overrides({k: best[k] for k in keys})))
     return 0
 
 

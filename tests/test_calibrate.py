@@ -31,3 +31,18 @@ def test_tiny_calibration_run(tmp_path, capsys):
     bad = tmp_path / "bad.toml"
     bad.write_text('[ranges]\n"x.y" = {min = 2, max = 1}\n')
     assert main(["calibrate", str(bad)]) == 2
+
+
+def test_tied_keys_expand_and_step_convergence_rule():
+    from rotorlanding.calibrate import converged, design_overrides
+
+    sets = design_overrides({"bearings.DE.eta,bearings.NDE.eta": 0.2}, {"solver.step": 1e-4})
+    assert sets == ["solver.step=0.0001", "bearings.DE.eta=0.2", "bearings.NDE.eta=0.2"]
+    a = {"fw3000": {"direction": "forward", "frequency_hz": 48.0},
+         "fw7000": {"direction": "forward", "frequency_hz": 65.0, "force_max_n": 4500.0},
+         "fw10000": {"direction": "forward", "frequency_hz": 77.0},
+         "bw": {"direction": "backward", "frequency_hz": 49.0}}
+    assert converged(a, a)
+    assert not converged(a, dict(a, bw={"direction": "none", "frequency_hz": None}))
+    assert not converged(a, dict(a, fw10000={"direction": "forward", "frequency_hz": 80.0}))
+    assert not converged(a, dict(a, fw7000={"direction": "forward", "frequency_hz": 65.0, "force_max_n": 5000.0}))
