@@ -32,6 +32,7 @@ import numba
 import numpy as np
 
 from user_forces.axial import axial_force as _axial_force_py
+from user_forces import axial_rub as _axial_rub_mod
 from user_forces.axial_rub import axial_rub as _axial_rub_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
 
@@ -128,6 +129,138 @@ def _axial_force_d(x, xd, P):
 def _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P):
     return _axial_rub(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
                       1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2])
+
+
+_GL_R = np.array(_axial_rub_mod._GL_R)
+_GL_ARC = np.array(_axial_rub_mod._GL_ARC)
+_CIRCLE = np.array(_axial_rub_mod._CIRCLE)
+_W_CIRCLE = _axial_rub_mod._W_CIRCLE
+
+
+@_njit
+def _rub_velocity_jac(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P, C):
+    """Axial rub (the quadrature of user_forces.axial_rub, same points) with forward-mode
+    derivatives w.r.t. the slip inputs: adds d(Fy, Fz, T_rot, T_race)/d(dy, dz, dvy, dvz, om, omi)
+    at fixed contact patch into C[:, 0:6]; the patch's dependence on the axial approach a0 (and
+    through it on dy, dz, x) is added by the caller. Returns (Fy, Fz, T_rot, T_race)."""
+    s = 1.0 if x >= 0 else -1.0
+    alpha = ta
+    beta = tb
+    a0 = abs(x) - P[P_CLAX] + s * (beta * dy - alpha * dz)
+    ac = -s * beta
+    as_ = s * alpha
+    kk = math.sqrt(ac * ac + as_ * as_)
+    th0 = math.atan2(as_, ac)
+    r1 = P[P_R1]
+    r2 = P[P_R2]
+    ra, rb, rc = r1, r2, r2
+    if kk * r2 > 1e-12 * abs(a0):
+        rstar = abs(a0) / kk
+        if r1 < rstar < r2:
+            rb = rstar
+            rc = rstar
+    elif a0 <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    cy0 = dvy + om * dz
+    cz0 = dvz - om * dy
+    dom = om - omi
+    vr = P[P_VREGAX]
+    vr2 = vr * vr
+    gs = 0.0
+    sy = 0.0
+    sz = 0.0
+    mi = 0.0
+    # d(sy, sz, mi)/d(cy0, cz0, dom)
+    D = np.zeros((3, 3))
+    for ip in range(2):
+        if ip == 0:
+            lo, hi = ra, rb
+        else:
+            lo, hi = rc, r2
+        if hi <= lo:
+            continue
+        hh = 0.5 * (hi - lo)
+        mm = 0.5 * (hi + lo)
+        for jr in range(_GL_R.shape[0]):
+            rho = mm + hh * _GL_R[jr, 0]
+            wr = hh * _GL_R[jr, 1] * rho
+            bb = kk * rho
+            full = a0 >= bb
+            if not full and a0 <= -bb:
+                continue
+            phi = 0.0
+            if not full:
+                phi = math.acos(-a0 / bb)
+            npts = _CIRCLE.shape[0] if full else _GL_ARC.shape[0]
+            for k in range(npts):
+                if full:
+                    c = _CIRCLE[k, 0]
+                    sn = _CIRCLE[k, 1]
+                    wq = wr * _W_CIRCLE
+                else:
+                    th = th0 + phi * _GL_ARC[k, 0]
+                    c = math.cos(th)
+                    sn = math.sin(th)
+                    wq = wr * phi * _GL_ARC[k, 1]
+                g = a0 + rho * (ac * c + as_ * sn)
+                if g <= 0.0:
+                    continue
+                q = wq * g
+                pcy = rho * c
+                pcz = rho * sn
+                wy = cy0 - dom * pcz
+                wz = cz0 + dom * pcy
+                m2 = wy * wy + wz * wz + vr2
+                m = math.sqrt(m2)
+                A = q / m
+                uy = wy * A
+                uz = wz * A
+                gs += q
+                sy += uy
+                sz += uz
+                mi += pcy * uz - pcz * uy
+                uyy = A * (1.0 - wy * wy / m2)
+                uyz = -A * wy * wz / m2
+                uzz = A * (1.0 - wz * wz / m2)
+                # columns: cy0, cz0, dom
+                duy0, duz0 = uyy, uyz
+                duy1, duz1 = uyz, uzz
+                duy2 = -pcz * uyy + pcy * uyz
+                duz2 = -pcz * uyz + pcy * uzz
+                D[0, 0] += duy0
+                D[1, 0] += duz0
+                D[2, 0] += pcy * duz0 - pcz * duy0
+                D[0, 1] += duy1
+                D[1, 1] += duz1
+                D[2, 1] += pcy * duz1 - pcz * duy1
+                D[0, 2] += duy2
+                D[1, 2] += duz2
+                D[2, 2] += pcy * duz2 - pcz * duy2
+    if gs <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    sc = P[P_MUAX] * abs(f_ax) / gs
+    # (cy0, cz0, dom) w.r.t. inputs (dy, dz, dvy, dvz, om, omi)
+    E = np.zeros((3, 6))
+    E[1, 0] = -om
+    E[0, 1] = om
+    E[0, 2] = 1.0
+    E[1, 3] = 1.0
+    E[0, 4] = dz
+    E[1, 4] = -dy
+    E[2, 4] = 1.0
+    E[2, 5] = -1.0
+    for j in range(6):
+        dsy = D[0, 0] * E[0, j] + D[0, 1] * E[1, j] + D[0, 2] * E[2, j]
+        dsz = D[1, 0] * E[0, j] + D[1, 1] * E[1, j] + D[1, 2] * E[2, j]
+        dmi = D[2, 0] * E[0, j] + D[2, 1] * E[1, j] + D[2, 2] * E[2, j]
+        C[0, j] += -sc * dsy
+        C[1, j] += -sc * dsz
+        C[2, j] += -sc * (dmi - dy * dsz + dz * dsy)
+        C[3, j] += sc * dmi
+    # explicit d and dz in T_rot = -sc (mi - dy sz + dz sy)
+    C[2, 0] += sc * sz
+    C[2, 1] += -sc * sy
+    return -sc * sy, -sc * sz, -sc * (mi - dy * sz + dz * sy), sc * mi
 
 
 @_njit
@@ -268,18 +401,18 @@ def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
         dfa_x = sg * dfx
         dfa_xd = sg * dfxd
     if P[P_RUB] != 0.0 and f_ax > 0.0:
-        base = _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P)
-        inp = np.array([dy, dz, dvy, dvz, om, omi, x])
-        eps = np.array([1e-9, 1e-9, 1e-7, 1e-7, 1e-5, 1e-5, 1e-10])
-        for j in range(7):
-            a = inp.copy()
-            b = inp.copy()
-            a[j] += eps[j]
-            b[j] -= eps[j]
-            ra = _rub(a[0], a[1], a[2], a[3], a[4], a[5], ta, tb, a[6], f_ax, P)
-            rb = _rub(b[0], b[1], b[2], b[3], b[4], b[5], ta, tb, b[6], f_ax, P)
-            for i in range(4):
-                C[i, j] += (ra[i] - rb[i]) / (2.0 * eps[j])
+        base = _rub_velocity_jac(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P, C)
+        # the contact patch moves with the axial approach a0 = |x| - cl_ax + s (beta dy - alpha dz):
+        # central difference in x at fixed f_ax (two quadratures), chained to dy, dz
+        sg = 1.0 if x >= 0 else -1.0
+        ex = 1e-10
+        ra = _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x + ex, f_ax, P)
+        rb = _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x - ex, f_ax, P)
+        for i in range(4):
+            dda0 = (ra[i] - rb[i]) / (2.0 * ex) * sg
+            C[i, 6] += dda0 * sg
+            C[i, 0] += dda0 * sg * tb
+            C[i, 1] -= dda0 * sg * ta
         # f_ax scales the rub linearly
         for i in range(4):
             C[i, 6] += base[i] / f_ax * dfa_x
