@@ -476,7 +476,8 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
                                solver_wall_s=float(r.attrs["solver_wall_s"]) + stats["wall_s"],
                                steps=int(r.attrs["steps"]) + stats["steps"],
                                newton_iterations=int(r.attrs["newton_iterations"]) + stats["newton_iterations"],
-                               jacobians=int(r.attrs["jacobians"]) + stats["jacobians"], stop_reason=reason)
+                               jacobians=int(r.attrs["jacobians"]) + stats["jacobians"], stop_reason=reason,
+                               peak_rss_mb=max(float(r.attrs.get("peak_rss_mb", 0.0)), _maxrss_mb()))
             done = bool(r.attrs["stop_reason"])
         now = time.perf_counter()
         if stream and (now - last_print > 2.0 or done):
@@ -592,15 +593,32 @@ def finish(path: Path, spec, scenario: Scenario, cd: Coastdown, *, plots: bool =
         h5.attrs["complete"] = complete
         h5.attrs["message"] = summary.get("message", reason)
         summary["units"] = "SI (m, N, s, J); speeds in rpm as named"
+        # peak resident memory over every process that worked on this run
+        perf["peak_memory_mb"] = max(float(r.attrs.get("peak_rss_mb", 0.0)), _maxrss_mb())
+        summary["performance"] = perf
         del h5["summary_json"]
         h5["summary_json"] = json.dumps(summary)
-    perf["peak_memory_mb"] = _maxrss_mb()
+    if complete:
+        repack(path)
     perf["results_h5_mb"] = path.stat().st_size / 1e6
-    summary["performance"] = perf
     if plots and n_file:
         summary["figures"] = [plot_coastdown(path, path.parent / "coastdown.png").name]
     (path.parent / "summary.json").write_text(json.dumps(summary, indent=2))
     return summary
+
+
+def repack(path: Path) -> None:
+    """Rewrite the file compactly (appending to compressed datasets leaves freed space behind);
+    written to a temporary file and renamed, so an interruption leaves the original."""
+    import h5py
+
+    tmp = path.with_suffix(".h5.repack")
+    with h5py.File(path, "r") as src, h5py.File(tmp, "w", fs_strategy="fsm", fs_persist=True) as dst:
+        for key, val in src.attrs.items():
+            dst.attrs[key] = val
+        for key in src:
+            src.copy(src[key], dst, name=key)
+    tmp.replace(path)
 
 
 def plot_coastdown(h5_path: Path, png: Path) -> Path:
