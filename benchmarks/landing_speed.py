@@ -49,7 +49,7 @@ CASES = {
     "radial landing 7000 rpm (mu_rad 0.15)": (ROOT / "scenarios" / "landing_7000rpm.toml", 1e-4),
 }
 PRE_ISSUE6_NEWTON = dict(jacobian_per_step=False, newton_contractivity=0.5, newton_max_iterations=25,
-                         adaptive_recovery_iterations=7)  # Exudyn's defaults
+                         adaptive_recovery_iterations=7, linear_solver="EXUdense")  # Exudyn's defaults
 
 
 def _load(path, t_end, step):

@@ -56,6 +56,9 @@ class SolverSettings:
     newton_contractivity: float = 0.2
     newton_max_iterations: int = 12
     adaptive_recovery_iterations: int = 12
+    # Eigen's dense LU factorises the 28 x 28 system Jacobian faster than Exudyn's own dense solver
+    # (same iterations, ~20 % less CPU per simulated second on the forward-whirl landing)
+    linear_solver: str = "EigenDense"
 
     @classmethod
     def from_spec(cls, spec: LandingSpec) -> "SolverSettings":
@@ -78,6 +81,7 @@ class SolverSettings:
         ti.newton.maxIterations = self.newton_max_iterations
         ti.adaptiveStep = True
         ti.adaptiveStepRecoveryIterations = self.adaptive_recovery_iterations
+        ss.linearSolver.solverType = getattr(exu.LinearSolverType, self.linear_solver)
         ti.verboseMode = 0
         ss.solution.file.write = False
         ss.solution.sensors.writePeriod = self.output_period
