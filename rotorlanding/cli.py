@@ -220,16 +220,31 @@ def cmd_sweep(args) -> int:
 def cmd_diagnose(args) -> int:
     from pathlib import Path
 
-    from .diagnose import diagnose, write_report
-    from .features import extract_features
+    from .diagnose import Point, diagnose, write_report
+    from .features import extract_features, features_from_table
     from .measured import detect_drop, load_measurement
     from .scenario import load_scenario
 
-    sc = load_scenario(args.scenario)
+    sets = list(args.set or [])
+    if args.t_end is not None:
+        sets.append(f"operating.t_end={args.t_end!r}")
+    sc = load_scenario(args.scenario, sets)
     clearance = sc.bearings["DE"].clearance if "DE" in sc.bearings else next(iter(sc.bearings.values())).clearance
     m = load_measurement(args.measured, time_offset_s=args.time_offset_s or 0.0)
-    if m.features:
-        meas = {k: (v, None) for k, v in m.features.items()}
+    if m.points:
+        meas = []
+        for p in m.points:
+            try:
+                load_scenario(args.scenario, sets + p.overrides)
+            except InputError as err:
+                raise InputError(f"points.{p.name}.set", " ".join(p.overrides),
+                                 f"not valid for {args.scenario}: {err.field} = {err.value!r}: {err.allowed}",
+                                 file=args.measured) from None
+            meas.append(Point(p.name, p.overrides, features_from_table(p.features, clearance,
+                                                                        where=f"points.{p.name}.features",
+                                                                        file=args.measured)))
+    elif m.features:
+        meas = features_from_table(m.features, clearance, file=args.measured)
     else:
         for name, (_, v) in m.channels.items():
             if name.endswith("_m") and name != "axial_m" and np.nanmax(np.abs(v)) > 5 * clearance:
@@ -244,16 +259,25 @@ def cmd_diagnose(args) -> int:
                              file=args.measured)
         meas = extract_features(m, clearance=clearance, t_drop=0.0)
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
+    from .effects import CATALOGUE
+
+    for c in cands or []:
+        if c not in CATALOGUE:
+            raise InputError("--candidates", c, f"unknown effect; allowed: {', '.join(CATALOGUE)}")
     res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,
-                   workers=args.workers)
+                   workers=args.workers, maxiter=args.maxiter, base_overrides=sets)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "report.json").write_text(json.dumps(res, indent=2, default=float))
-    write_report(res, out, None if m.features else m, args.scenario, clearance)
-    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']}")
+    files = write_report(res, out, m if m.channels else None, args.scenario, clearance)
+    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']} "
+          f"({res['simulations']} simulations, {res['wall_s']:.0f} s)")
     for n in res["named_effects"]:
         print(f"  {n}: {res['signatures'][n]}")
-    print(f"report: {out}/report.json, {out}/report.md, {out}/overlay.png")
+    if len(res["points"]) > 1:
+        print("  whirl measured / before / after: " + "; ".join(
+            f"{p['name']}: {p['whirl_measured']} / {p['whirl_before']} / {p['whirl_after']}" for p in res["points"]))
+    print(f"report: {out}/report.json, " + ", ".join(f"{out}/{f}" for f in files))
     return 0
 
 
@@ -340,6 +364,10 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--workers", type=int, default=2)
     dg.add_argument("--time-offset-s", type=float, default=None,
                     help="drop instant in the data's clock (default: detected from the vertical displacement)")
+    dg.add_argument("--set", action="append", metavar="KEY=VALUE",
+                    help="change the model, e.g. --set effects.axial_rub=false (repeatable)")
+    dg.add_argument("--t-end", type=float, default=None, help="override operating.t_end of the model [s]")
+    dg.add_argument("--maxiter", type=int, default=10, help="search iterations per candidate parameter (default 10)")
     dg.set_defaults(func=cmd_diagnose)
 
     ca = sub.add_parser("calibrate", help="Monte Carlo search of rig unknowns against the paper's validation data")

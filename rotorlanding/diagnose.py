@@ -1,27 +1,36 @@
 """Model-gap diagnosis: which missing effect explains where simulation and measurement disagree.
 
 ``diagnose(measured, scenario_path, ...)``:
-  a. simulate the model as it is, extract the same features as from the measurement, gap_before;
+  a. simulate the model as it is at every operating point (one point for a record; one per
+     ``[points.NAME]`` table of a feature table, each with its scenario overrides), extract the
+     same features as from the measurement, gap_before = one weighted RMS over the rows of every
+     point (:func:`rotorlanding.features.gap_points`);
   b. for each candidate effect the model lacks (switched off in its scenario): switch it on and
-     calibrate its parameter within bounds (bounded scalar search on the gap);
-  c. rank by a BIC-like score n ln(gap^2) + k ln(n) (n features, k parameters) and name the best
-     only if the disagreement is above the noise level (gap_before > NOISE_GAP), the best
-     candidate shrinks it by at least ``min_improvement`` (30 %) and its score beats the unchanged model
-     by more than 2; otherwise report that no candidate explains the disagreement
-     (named_effect = null);
+     calibrate its parameter within bounds (bounded scalar search on the gap over all points
+     jointly); candidates run in threads that share one process pool for the simulations, so
+     candidates x points simulations keep every worker busy;
+  c. rank by a BIC-like score n ln(gap^2) + k ln(n) (n feature rows, k parameters) and name the best
+     only if the disagreement is above the noise level (gap_before > NOISE_GAP), its score beats
+     the unchanged model by more than 2, and either it shrinks the gap by at least
+     ``min_improvement`` (30 %) or it makes the whirl direction right at some operating point
+     without making it wrong at another (a change of the whirl regime is not a noise effect);
+     otherwise report that no candidate explains the disagreement (named_effect = null);
   d. ``--max-effects 2`` repeats from the improved model.
 """
 
 from __future__ import annotations
 
 import math
-from concurrent.futures import ProcessPoolExecutor
+import time
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
 from .effects import CATALOGUE
-from .features import extract_features, gap
+from .errors import InputError
+from .features import extract_features, gap_points
 from .measured import Measurement
 
 #: gaps below this are treated as noise: on clean data (the model against its own resampled,
@@ -30,6 +39,19 @@ NOISE_GAP = 0.3
 #: a named effect must remove at least this share of the remaining gap; with two missing effects
 #: the first one found can only remove its own part (e.g. 48 % for windage + ribbon cross-coupling)
 MIN_STEP_IMPROVEMENT = 0.3
+#: calibration of a parameter: a grid over its bounds (one parallel batch), then a bounded search
+#: between the neighbours of the best grid value
+GRID_POINTS = 5
+
+
+@dataclass
+class Point:
+    """An operating point: its name, the scenario overrides that define it and the measured
+    features there (name -> (value, scale))."""
+
+    name: str
+    overrides: list[str] = field(default_factory=list)
+    features: dict = field(default_factory=dict)
 
 
 def _simulate_features(scenario_path, overrides, clearance, *, with_series=False):
@@ -53,98 +75,77 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
     return (feats, Measurement(chans)) if with_series else feats
 
 
-def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path, clearance: float) -> list[str]:
-    """report.md and overlay.png: measured vs model before vs after, spectrum, feature table."""
-    from pathlib import Path
+def _sim_job(args):
+    """One simulation in a worker: features, or the failure (a solver that does not converge at a
+    trial parameter value is a bad trial, not a crash of the diagnosis)."""
+    scenario_path, overrides, clearance = args
+    try:
+        return _simulate_features(scenario_path, overrides, clearance)
+    except Exception as exc:  # noqa: BLE001 - reported as a failed trial
+        return {"__error__": f"{type(exc).__name__}: {exc}"}
 
-    import matplotlib
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+class _Simulator:
+    """Runs the simulations of every operating point of one model variant in a shared process
+    pool. Overrides per simulation: the model's ``--set`` values, then the point's own values
+    (its speed ...), then the candidate effect and its parameter."""
 
-    from .whirl import full_spectrum
+    def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str]):
+        self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
+        self.pool = ProcessPoolExecutor(workers) if workers > 1 else None
+        self.count = 0
 
-    out = Path(out_dir)
-    _, before = _simulate_features(scenario_path, [], clearance, with_series=True)
-    _, after = _simulate_features(scenario_path, res["calibrated_overrides"], clearance, with_series=True)
-    fig, axes = plt.subplots(3, 1, figsize=(9, 10))
-    sets = [("model before", before, "tab:blue"), ("model after", after, "tab:green")]
-    if measured is not None and measured.channels:
-        sets.insert(0, ("measured", measured, "0.55"))
-    for label, m, c in sets:
-        if m.has("DE_z_m"):
-            t, z = m.series("DE_z_m")
-            axes[0].plot(t, z * 1e3, color=c, lw=2.5 if label == "measured" else 0.8, label=label)
-        if m.has("rotor_speed_rpm"):
-            t, sp = m.series("rotor_speed_rpm")
-            axes[1].plot(t, sp, color=c, lw=2.5 if label == "measured" else 0.8, label=label)
-        if m.has("DE_y_m") and m.has("DE_z_m"):
-            t, y = m.series("DE_y_m")
-            z = np.interp(t, *m.series("DE_z_m"))
-            dt = float(np.median(np.diff(t)))
-            tu = np.arange(t[0], t[-1], dt)
-            f, a = full_spectrum(tu, np.interp(tu, t, y), np.interp(tu, t, z))
-            axes[2].plot(f, a * 1e6, color=c, lw=2.5 if label == "measured" else 0.8, label=label)
-    axes[0].set_ylabel("DE vertical [mm]")
-    axes[1].set_ylabel("rotor speed [rpm]")
-    axes[2].set_ylabel("full spectrum DE [um]")
-    axes[2].set_xlabel("frequency [Hz] (negative: backward)")
-    axes[2].set_xlim(-300, 300)
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    axes[0].set_xlabel("time after the drop [s]")
-    fig.tight_layout()
-    fig.savefig(out / "overlay.png", dpi=110)
-    plt.close(fig)
-    lines = ["# Model-gap diagnosis", "",
-             f"Model: `{scenario_path}`. Gap before: **{res['gap_before']:.3f}**, after: **{res['gap_after']:.3f}**.",
-             ""]
-    if res["named_effect"]:
-        for n in res["named_effects"]:
-            lines.append(f"Named effect: **{n}**. Signature: {res['signatures'][n]}.")
-        lines.append(f"Calibrated: `{' '.join(res['calibrated_overrides'])}`.")
-    else:
-        lines.append("No candidate effect explains the disagreement significantly (null answer).")
-    lines += ["", "## Candidates", "", "| step | effect | gap | parameters | score |", "|---|---|---|---|---|"]
-    for i, stp in enumerate(res["steps"], 1):
-        for c in stp["candidates"]:
-            lines.append(f"| {i} | {c['effect']} | {c['gap']:.3g} | {c['parameters']} | {c['score']:.3g} |")
-    lines += ["", "## Features (distance = |measured - model| / scale)", "",
-              "| feature | measured | before | after | scale | distance before | distance after |", "|---|---|---|---|---|---|---|"]
-    after_rows = {r["feature"]: r for r in res["features_after"]}
-    for r in res["features_before"]:
-        a = after_rows.get(r["feature"], {})
-        lines.append(f"| {r['feature']} | {r['measured']} | {r['simulated']} | {a.get('simulated', '-')} | "
-                     f"{r['scale']} | {r['distance']:.3g} | {a.get('distance', float('nan')):.3g} |")
-    lines += ["", "![overlay](overlay.png)", ""]
-    (out / "report.md").write_text("\n".join(lines))
-    return ["report.md", "overlay.png"]
+    def overrides(self, p: Point, extra: list[str]) -> list[str]:
+        return self.base + list(p.overrides) + list(extra)
+
+    def features(self, extras: list[list[str]]) -> list[list[dict]]:
+        """Simulated features at every point for each model variant (all submitted at once)."""
+        jobs = [(self.scenario_path, self.overrides(p, extra), self.clearance) for extra in extras for p in self.points]
+        self.count += len(jobs)
+        out = [_sim_job(j) for j in jobs] if self.pool is None else list(self.pool.map(_sim_job, jobs))
+        n = len(self.points)
+        return [out[i * n:(i + 1) * n] for i in range(len(extras))]
+
+    def gaps(self, extras: list[list[str]]):
+        res = []
+        for sims in self.features(extras):
+            failed = [s["__error__"] for s in sims if "__error__" in s]
+            if failed:
+                res.append((float("inf"), [], sims, failed[0]))
+                continue
+            g, rows = gap_points([p.features for p in self.points], sims, [p.name for p in self.points])
+            res.append((g, rows, sims, None))
+        return res
+
+    def gap(self, extra: list[str]):
+        return self.gaps([extra])[0]
+
+    def close(self):
+        if self.pool is not None:
+            self.pool.shutdown()
 
 
 def _param_overrides(param, x):
     return [f"{k}={x!r}" for k in param.keys]
 
 
-def _calibrate(args):
-    """Switch one effect on and fit its (first) parameter; an effect the scenario cannot take
-    (e.g. unbalance without an [unbalance] table) comes back with gap = inf and the reason."""
-    from .errors import InputError
+def _calibrate(sim: _Simulator, name: str, current: list[str], maxiter: int) -> dict:
+    """Switch one effect on and fit its (first) parameter on the gap over all points. An effect the
+    scenario cannot take (e.g. unbalance without an [unbalance] table) comes back with gap = inf
+    and the reason."""
+    from .scenario import load_scenario
 
-    try:
-        return _calibrate_one(*args)
-    except InputError as err:
-        return {"effect": args[0], "gap": float("inf"), "parameters": {}, "rows": [], "k": 0,
-                "not_applicable": str(err)}
-
-
-def _calibrate_one(name, scenario_path, base_overrides, meas, clearance, maxiter):
     eff = CATALOGUE[name]
-    on = base_overrides + [f"effects.{name}=true"]
+    on = current + [f"effects.{name}=true"]
+    try:
+        for p in sim.points:
+            load_scenario(sim.scenario_path, sim.overrides(p, on))
+    except InputError as err:
+        return {"effect": name, "gap": float("inf"), "parameters": {}, "rows": [], "k": 0, "not_applicable": str(err)}
     if not eff.parameters:
-        f = _simulate_features(scenario_path, on, clearance)
-        g, rows = gap(meas, f)
-        return {"effect": name, "gap": g, "parameters": {}, "rows": rows, "k": 0}
+        g, rows, sims, err = sim.gap(on)
+        return {"effect": name, "gap": g, "parameters": {}, "rows": rows, "k": 0, "directions": _directions(sims),
+                **({"failed": err} if err else {})}
     p = eff.parameters[0]
     to_x = (lambda u: 10 ** u) if p.log else (lambda u: u)
     lo, hi = (math.log10(p.lower), math.log10(p.upper)) if p.log else (p.lower, p.upper)
@@ -152,67 +153,266 @@ def _calibrate_one(name, scenario_path, base_overrides, meas, clearance, maxiter
 
     def objective(u):
         x = float(to_x(u))
-        f = _simulate_features(scenario_path, on + _param_overrides(p, x), clearance)
-        g, rows = gap(meas, f)
-        cache[u] = (g, rows, x)
+        g, rows, sims, err = sim.gap(on + _param_overrides(p, x))
+        cache[u] = (g, rows, x, sims)
         return g if math.isfinite(g) else 1e9
 
-    minimize_scalar(objective, bounds=(lo, hi), method="bounded", options={"maxiter": maxiter, "xatol": 1e-3})
+    # a coarse grid first (one parallel batch): the gap over features with bounded distances can
+    # be flat or have several minima over the bounds, where a bounded Brent search alone stalls
+    grid = np.linspace(lo, hi, GRID_POINTS)
+    for u, (g, rows, sims, err) in zip(grid, sim.gaps([on + _param_overrides(p, float(to_x(u))) for u in grid])):
+        cache[float(u)] = (g, rows, float(to_x(u)), sims)
+    k = int(np.argmin([cache[float(u)][0] for u in grid]))
+    a, b = float(grid[max(k - 1, 0)]), float(grid[min(k + 1, GRID_POINTS - 1)])
+    minimize_scalar(objective, bounds=(a, b), method="bounded", options={"maxiter": maxiter, "xatol": 1e-3})
     u_best = min(cache, key=lambda u: cache[u][0])
-    g, rows, x = cache[u_best]
-    return {"effect": name, "gap": g, "parameters": {p.name: x}, "rows": rows, "k": 1}
+    g, rows, x, sims = cache[u_best]
+    return {"effect": name, "gap": g, "parameters": {p.name: x}, "rows": rows, "k": 1, "directions": _directions(sims),
+            "evaluations": len(cache)}
 
 
-def diagnose(measured: Measurement | dict, scenario_path, *, clearance: float, candidates=None, max_effects: int = 1,
-             min_improvement: float = MIN_STEP_IMPROVEMENT, noise_gap: float = NOISE_GAP, workers: int = 2, maxiter: int = 10,
-             t_drop: float = 0.0) -> dict:
+def _directions(sims: list[dict]) -> list:
+    return [s.get("whirl_direction", (None,))[0] for s in sims]
+
+
+def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_effects: int = 1,
+             min_improvement: float = MIN_STEP_IMPROVEMENT, noise_gap: float = NOISE_GAP, workers: int = 2,
+             maxiter: int = 10, t_drop: float = 0.0, base_overrides: list[str] | None = None) -> dict:
+    """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is) or
+    a list of :class:`Point` (one per operating point, each with its scenario overrides).
+    ``base_overrides``: ``--set`` changes of the model (e.g. ``effects.axial_rub=false``)."""
     from .scenario import load_scenario
 
-    meas = measured if isinstance(measured, dict) else extract_features(measured, clearance=clearance,
-                                                                          t_drop=t_drop)
-    base = load_scenario(scenario_path)
+    t_start = time.perf_counter()
+    base_overrides = list(base_overrides or [])
+    if isinstance(measured, list):
+        points = measured
+    else:
+        meas = measured if isinstance(measured, dict) else extract_features(measured, clearance=clearance,
+                                                                              t_drop=t_drop)
+        points = [Point("", [], meas)]
+    base = load_scenario(scenario_path, base_overrides)
+    sim = _Simulator(scenario_path, points, clearance, workers, base_overrides)
     overrides: list[str] = []
     named, steps = [], []
-    f0 = _simulate_features(scenario_path, overrides, clearance)
-    gap_before, rows_before = gap(meas, f0)
-    current_gap, current_rows = gap_before, rows_before
-    for _ in range(max_effects):
-        lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
-        if candidates:
-            lacking = [n for n in lacking if n in candidates]
-        if not lacking:
-            break
-        jobs = [(n, scenario_path, overrides, meas, clearance, maxiter) for n in lacking]
-        if workers > 1 and len(jobs) > 1:
-            with ProcessPoolExecutor(min(workers, len(jobs))) as ex:
-                results = list(ex.map(_calibrate, jobs))
-        else:
-            results = [_calibrate(j) for j in jobs]
-        n = max(1, len(current_rows))
-        for r in results:
-            r["score"] = (n * math.log(r["gap"] ** 2 + 1e-12) + r["k"] * math.log(n)) if math.isfinite(r["gap"]) \
-                else float("inf")
-        results.sort(key=lambda r: r["score"])
-        best = results[0]
-        base_score = n * math.log(current_gap ** 2 + 1e-12)
-        significant = (current_gap > noise_gap and best["gap"] <= (1 - min_improvement) * current_gap
-                       and best["score"] < base_score - 2.0)
-        steps.append({"gap_before": current_gap, "candidates": [{k: r[k] for k in ("effect", "gap", "parameters",
-                                                                                   "score", "not_applicable")
-                                                                 if k in r} for r in results],
-                      "named_effect": best["effect"] if significant else None})
-        if not significant:
-            break
-        named.append(best["effect"])
-        overrides += [f"effects.{best['effect']}=true"]
-        for pname, x in best["parameters"].items():
-            p = next(pp for pp in CATALOGUE[best["effect"]].parameters if pp.name == pname)
-            overrides += _param_overrides(p, x)
-        current_gap, current_rows = best["gap"], best["rows"]
+    try:
+        gap_before, rows_before, sims0, err = sim.gap(overrides)
+        if err:
+            raise RuntimeError(f"the model as it is fails to simulate: {err}")
+        directions_before = _directions(sims0)
+        current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
+        for _ in range(max_effects):
+            lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
+            if candidates:
+                lacking = [n for n in lacking if n in candidates]
+            if not lacking:
+                break
+            if sim.pool is not None and len(lacking) > 1:
+                with ThreadPoolExecutor(len(lacking)) as ex:
+                    results = list(ex.map(lambda n: _calibrate(sim, n, overrides, maxiter), lacking))
+            else:
+                results = [_calibrate(sim, n, overrides, maxiter) for n in lacking]
+            n = max(1, len(current_rows))
+            for r in results:
+                r["score"] = (n * math.log(r["gap"] ** 2 + 1e-12) + r["k"] * math.log(n)) if math.isfinite(r["gap"]) \
+                    else float("inf")
+            results.sort(key=lambda r: r["score"])
+            best = results[0]
+            base_score = n * math.log(current_gap ** 2 + 1e-12)
+            relative = best["gap"] <= (1 - min_improvement) * current_gap
+            # a whirl direction made right at some point and broken at none is a qualitative gain
+            # (the whirl regime), not something sensor noise or a parameter fit of noise produces
+            meas_dirs = [p.features.get("whirl_direction", (None,))[0] for p in points]
+            new_dirs = best.get("directions", [None] * len(points))
+            fixed = [p.name or "record" for p, m, b, a in zip(points, meas_dirs, current_dirs, new_dirs)
+                     if m is not None and b != m and a == m]
+            broken = [p.name or "record" for p, m, b, a in zip(points, meas_dirs, current_dirs, new_dirs)
+                      if m is not None and b == m and a != m]
+            significant = (current_gap > noise_gap and best["score"] < base_score - 2.0
+                           and (relative or (bool(fixed) and not broken)))
+            keys = ("effect", "gap", "parameters", "score", "directions", "evaluations", "not_applicable", "failed")
+            steps.append({"gap_before": current_gap, "base_score": base_score,
+                          "candidates": [{k: r[k] for k in keys if k in r} for r in results],
+                          "named_effect": best["effect"] if significant else None,
+                          "relative_improvement": 1 - best["gap"] / current_gap if math.isfinite(best["gap"]) else 0.0,
+                          "whirl_direction_fixed_at": fixed, "whirl_direction_broken_at": broken,
+                          "significant_by": ("relative improvement" if relative else "whirl direction")
+                          if significant else None})
+            if not significant:
+                break
+            named.append(best["effect"])
+            overrides += [f"effects.{best['effect']}=true"]
+            for pname, x in best["parameters"].items():
+                p = next(pp for pp in CATALOGUE[best["effect"]].parameters if pp.name == pname)
+                overrides += _param_overrides(p, x)
+            current_gap, current_rows, current_dirs = best["gap"], best["rows"], best["directions"]
+    finally:
+        sim.close()
     return {"named_effect": named[0] if named else None, "named_effects": named, "gap_before": gap_before,
             "gap_after": current_gap, "features_before": rows_before, "features_after": current_rows,
             "calibrated_overrides": overrides, "steps": steps,
-            "signatures": {n: CATALOGUE[n].signature for n in named}}
+            "signatures": {n: CATALOGUE[n].signature for n in named},
+            "model_overrides": base_overrides,
+            "points": [{"name": p.name, "overrides": p.overrides,
+                        "whirl_measured": p.features.get("whirl_direction", (None,))[0],
+                        "whirl_before": d0, "whirl_after": d1}
+                       for p, d0, d1 in zip(points, directions_before, current_dirs)],
+            "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
 
 
-__all__ = ["diagnose", "np"]
+_DIR_Y = {"backward": -1, "none": 0, "forward": 1}
+
+
+def _feature_figure(res: dict, path) -> None:
+    """Per-point features: measured vs model before vs after, one panel per feature."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = [p["name"] or "-" for p in res["points"]]
+    feats = sorted({r["feature"] for r in res["features_before"]} | {r["feature"] for r in res["features_after"]},
+                   key=lambda f: (f != "whirl_direction", f != "whirl_frequency_hz", f))
+    fig, axes = plt.subplots(len(feats), 1, figsize=(7, 2.2 * len(feats) + 0.5), squeeze=False)
+    for ax, feat in zip(axes[:, 0], feats):
+        for label, rows, style in (("measured", res["features_before"], dict(color="k", marker="o", ms=9, ls="")),
+                                   ("model before", res["features_before"], dict(color="tab:blue", marker="x", ms=8,
+                                                                                  ls="")),
+                                   ("model after", res["features_after"], dict(color="tab:green", marker="s", ms=6,
+                                                                                ls="", mfc="none"))):
+            xs, ys = [], []
+            for r in rows:
+                if r["feature"] != feat:
+                    continue
+                v = r["measured"] if label == "measured" else r["simulated"]
+                if v is None:
+                    continue
+                xs.append(names.index(r.get("point") or "-"))
+                ys.append(_DIR_Y.get(v, 0) if feat == "whirl_direction" else v)
+            ax.plot(xs, ys, label=label, **style)
+        if feat == "whirl_direction":
+            ax.set_yticks([-1, 0, 1], ["backward", "none", "forward"])
+            ax.set_ylim(-1.5, 1.5)
+        ax.set_ylabel(feat, fontsize=8)
+        ax.set_xticks(range(len(names)), names)
+        ax.set_xlim(-0.5, len(names) - 0.5)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=8)
+    axes[0, 0].set_title(f"gap {res['gap_before']:.3f} -> {res['gap_after']:.3f}; named: {res['named_effect']}",
+                         fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def _overlay_figure(res: dict, path, measured: Measurement, scenario_path, clearance: float) -> None:
+    """measured vs model before vs after (one record): DE vertical, rotor speed, full spectrum."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .whirl import full_spectrum
+
+    _, before = _simulate_features(scenario_path, res["model_overrides"], clearance, with_series=True)
+    _, after = _simulate_features(scenario_path, res["model_overrides"] + res["calibrated_overrides"], clearance,
+                                  with_series=True)
+    fig, axes = plt.subplots(3, 1, figsize=(9, 10))
+    sets = [("measured", measured, "0.55"), ("model before", before, "tab:blue"), ("model after", after, "tab:green")]
+    for label, m, c in sets:
+        lw = 2.5 if label == "measured" else 0.8
+        if m.has("DE_z_m"):
+            t, z = m.series("DE_z_m")
+            axes[0].plot(t, z * 1e3, color=c, lw=lw, label=label)
+        if m.has("rotor_speed_rpm"):
+            t, sp = m.series("rotor_speed_rpm")
+            axes[1].plot(t, sp, color=c, lw=lw, label=label)
+        if m.has("DE_y_m") and m.has("DE_z_m"):
+            t, y = m.series("DE_y_m")
+            dt = float(np.median(np.diff(t)))
+            tu = np.arange(t[0], t[-1], dt)
+            f, a = full_spectrum(tu, np.interp(tu, t, y), np.interp(tu, *m.series("DE_z_m")))
+            axes[2].plot(f, a * 1e6, color=c, lw=lw, label=label)
+    axes[0].set_ylabel("DE vertical [mm]")
+    axes[0].set_xlabel("time after the drop [s]")
+    axes[1].set_ylabel("rotor speed [rpm]")
+    axes[2].set_ylabel("full spectrum DE [um]")
+    axes[2].set_xlabel("frequency [Hz] (negative: backward)")
+    axes[2].set_xlim(-300, 300)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _fmt(v) -> str:
+    if v is None:
+        return "-"
+    if isinstance(v, str):
+        return v
+    return f"{v:.4g}"
+
+
+def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path, clearance: float) -> list[str]:
+    """report.md and a figure: overlay.png (a record: measured vs model before vs after, spectrum)
+    or features.png (a feature table: per-point features measured vs before vs after)."""
+    from pathlib import Path
+
+    out = Path(out_dir)
+    if measured is not None and measured.channels:
+        fig_name = "overlay.png"
+        _overlay_figure(res, out / fig_name, measured, scenario_path, clearance)
+    else:
+        fig_name = "features.png"
+        _feature_figure(res, out / fig_name)
+    multi = len(res["points"]) > 1 or any(p["overrides"] for p in res["points"])
+    model = f"`{scenario_path}`" + (f" with `{' '.join(res['model_overrides'])}`" if res["model_overrides"] else "")
+    lines = ["# Model-gap diagnosis", "",
+             f"Model: {model}. Gap before: **{res['gap_before']:.3f}**, after: **{res['gap_after']:.3f}** "
+             f"({100 * (1 - res['gap_after'] / res['gap_before']):.0f} % smaller)."
+             if res["gap_before"] else "", ""]
+    if multi:
+        lines.append(f"Operating points: {', '.join(p['name'] + ' (' + ' '.join(p['overrides']) + ')' for p in res['points'])}; "
+                     f"{res['simulations']} simulations, {res['wall_s']:.0f} s wall on {res['workers']} workers.")
+        lines.append("")
+    if res["named_effect"]:
+        for n in res["named_effects"]:
+            lines.append(f"Named effect: **{n}**. Signature: {res['signatures'][n]}.")
+        lines.append(f"Calibrated: `{' '.join(res['calibrated_overrides'])}`.")
+        if any(p["whirl_measured"] for p in res["points"]):
+            fixed = [p["name"] or "the record" for p in res["points"]
+                     if p["whirl_measured"] and p["whirl_before"] != p["whirl_measured"] == p["whirl_after"]]
+            still = [p["name"] or "the record" for p in res["points"]
+                     if p["whirl_measured"] and p["whirl_after"] != p["whirl_measured"]]
+            lines.append("")
+            lines.append("In the data: whirl direction measured / before / after per point: "
+                         + "; ".join(f"{p['name'] or 'record'}: {p['whirl_measured']} / {p['whirl_before']} / "
+                                     f"{p['whirl_after']}" for p in res["points"]) + "."
+                         + (f" The named effect makes the model whirl as measured at {', '.join(fixed)}." if fixed
+                            else "")
+                         + (f" Still different at {', '.join(still)}." if still else ""))
+    else:
+        lines.append("No candidate effect explains the disagreement significantly (null answer).")
+    lines += ["", "## Candidates", "", "| step | effect | gap | parameters | score | whirl per point |",
+              "|---|---|---|---|---|---|"]
+    for i, stp in enumerate(res["steps"], 1):
+        for c in stp["candidates"]:
+            note = c.get("not_applicable") or c.get("failed") or " / ".join(map(str, c.get("directions", [])))
+            lines.append(f"| {i} | {c['effect']} | {c['gap']:.3g} | {c['parameters']} | {c['score']:.3g} | {note} |")
+    lines += ["", "## Features (distance = |measured - model| / scale, at most 3)", "",
+              "| point | feature | measured | before | after | scale | distance before | distance after |",
+              "|---|---|---|---|---|---|---|---|"]
+    after_rows = {(r.get("point"), r["feature"]): r for r in res["features_after"]}
+    for r in res["features_before"]:
+        a = after_rows.get((r.get("point"), r["feature"]), {})
+        lines.append(f"| {r.get('point') or '-'} | {r['feature']} | {_fmt(r['measured'])} | {_fmt(r['simulated'])} | "
+                     f"{_fmt(a.get('simulated'))} | {_fmt(r['scale'])} | {r['distance']:.3g} | "
+                     f"{a.get('distance', float('nan')):.3g} |")
+    lines += ["", f"![{fig_name[:-4]}]({fig_name})", ""]
+    (out / "report.md").write_text("\n".join(lines))
+    return ["report.md", fig_name]
+
+
+__all__ = ["Point", "diagnose", "write_report"]

@@ -2,9 +2,18 @@
 
 Each feature has a value and a *scale* (what counts as a meaningful difference), so differences
 of different quantities are comparable: distance = |measured - simulated| / scale. The whirl
-direction is categorical (distance 0 or ``DIRECTION_MISMATCH``); when directions differ, whirl
-frequency and onset are not compared. The gap is sqrt(sum w d^2 / sum w) over the features
-present in both, with the per-feature table.
+direction is categorical (distance 0 or ``DIRECTION_MISMATCH``). When the measurement whirls and
+the model does not whirl the same way, the measured whirl frequency and onset are not reproduced
+and count ``DIRECTION_MISMATCH`` each. No single distance counts more than ``DIRECTION_MISMATCH``
+(``MAX_DISTANCE``): a model whirling the wrong way (or not at all) is never closer than one that
+whirls the right way at a wrong frequency. The bound is smooth (:func:`soft_cap`: distances of 1 / 2
+become 0.997 / 1.91, large ones approach 3 but keep growing), so a calibration still sees which
+way to go where several features are far off. The gap is sqrt(sum w d^2 / sum w) over the features
+present in both, with the per-feature table; over several operating points the rows of every
+point enter the same sum (:func:`gap_points`).
+
+Feature names carry their unit (SI, like the measured channels); :data:`FEATURE_UNITS` lists
+them, :func:`features_from_table` checks a measured feature table against it.
 """
 
 from __future__ import annotations
@@ -13,10 +22,53 @@ import math
 
 import numpy as np
 
+from .errors import InputError
 from .measured import Measurement
 from .whirl import whirl_analysis
 
 DIRECTION_MISMATCH = 3.0
+MAX_DISTANCE = DIRECTION_MISMATCH
+WHIRL_DIRECTIONS = ("none", "forward", "backward")
+
+#: every feature :func:`extract_features` gives (bearing DE), name -> unit (the name's suffix)
+FEATURE_UNITS = {
+    "whirl_direction": "", "whirl_frequency_hz": "hz", "whirl_onset_s": "s",
+    "DE_orbit_radius_mean_m": "m", "DE_first_rebound_m": "m", "DE_vertical_min_m": "m", "DE_vertical_max_m": "m",
+    "DE_horizontal_min_m": "m", "DE_horizontal_max_m": "m", "DE_force_peak_n": "n", "DE_force_z_min_n": "n",
+    "DE_force_z_max_n": "n", "rotor_deceleration_rpm_s": "rpm_s", "DE_race_spinup_s": "s", "axial_mean_m": "m",
+    "axial_oscillation_m": "m",
+}
+
+
+def soft_cap(d: float, cap: float = MAX_DISTANCE) -> float:
+    """d / (1 + (d/cap)^4)^(1/4): ~d for small d (1 -> 0.997, 2 -> 1.91), < cap always."""
+    return d / (1.0 + (d / cap) ** 4) ** 0.25
+
+
+def scale_of(name: str, value, clearance: float, force_ref: float | None = None):
+    """What counts as a meaningful difference of a feature (the same rule for measured tables and
+    extracted features); ``force_ref`` is the peak contact force the force scales refer to."""
+    if name == "whirl_direction":
+        return None
+    if name == "whirl_frequency_hz":
+        return max(2.0, 0.03 * abs(value))
+    if name == "whirl_onset_s":
+        return 0.05
+    if name.endswith("_first_rebound_m"):
+        return 0.05 * clearance
+    if name == "axial_mean_m":
+        return 2e-5
+    if name == "axial_oscillation_m":
+        return 1e-5
+    if name.endswith("_m"):
+        return 0.1 * clearance
+    if name.endswith("_n"):
+        return max(200.0, 0.15 * abs(force_ref if force_ref is not None else value))
+    if name == "rotor_deceleration_rpm_s":
+        return max(5.0, 0.1 * abs(value))
+    if name.endswith("_race_spinup_s"):
+        return 0.02
+    raise KeyError(name)
 
 
 def _uniform(t, v, dt=None):
@@ -69,6 +121,13 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
         _, b = m.series(fz)
         peak = float(np.max(np.hypot(a, np.interp(t, *m.series(fz)))))
         f[f"{bearing}_force_peak_n"] = (peak, max(200.0, 0.15 * peak))
+        # vertical force range (Table 2 of the paper gives max / min of the vertical force)
+        tz = m.series(fz)[0]
+        sel = tz >= t_drop
+        if sel.any():
+            fs = max(200.0, 0.15 * peak)
+            f[f"{bearing}_force_z_min_n"] = (float(np.min(b[sel])), fs)
+            f[f"{bearing}_force_z_max_n"] = (float(np.max(b[sel])), fs)
     if m.has("rotor_speed_rpm"):
         t, s = m.series("rotor_speed_rpm")
         sel = t >= t_drop
@@ -91,37 +150,92 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
     return f
 
 
-def features_from_table(table: dict) -> dict:
-    """Measured features given as a table {name: value} (scales from the same rules)."""
+def _unit_hint(name: str) -> str:
+    """'allowed' text for an unknown feature name: a wrong unit of a known feature is named."""
+    for known, unit in FEATURE_UNITS.items():
+        stem = known[: -len(unit) - 1] if unit else known
+        if unit and name.lower().startswith(stem.lower() + "_") and name != known:
+            return f"wrong unit '{name[len(stem) + 1:]}': this feature is {known} (SI units, {unit.replace('_', '/')})"
+    return "unknown feature; allowed: " + ", ".join(FEATURE_UNITS)
+
+
+def features_from_table(table: dict, clearance: float, *, where: str = "features", file: str | None = None) -> dict:
+    """Measured features given as a table {name: value}: names and values checked, scales from
+    the same rules as extracted features (:func:`scale_of`; force scales refer to the largest
+    force given at the point)."""
+    if not isinstance(table, dict) or not table:
+        raise InputError(where, table, "needs at least one measured feature, e.g. whirl_frequency_hz = 65.0", file=file)
+    forces = [abs(v) for k, v in table.items() if k.endswith("_n") and isinstance(v, (int, float))]
     out = {}
     for k, v in table.items():
-        out[k] = (v, None)
+        if k not in FEATURE_UNITS:
+            raise InputError(f"{where}.{k}", v, _unit_hint(k), file=file)
+        if k == "whirl_direction":
+            if v not in WHIRL_DIRECTIONS:
+                raise InputError(f"{where}.{k}", v, f"must be one of {', '.join(WHIRL_DIRECTIONS)}", file=file)
+            out[k] = (v, None)
+            continue
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise InputError(f"{where}.{k}", v, f"must be a finite number in {FEATURE_UNITS[k].replace('_', '/')}",
+                             file=file)
+        if k.endswith("_m") and k != "axial_mean_m" and abs(v) > 0.05:
+            raise InputError(f"{where}.{k}", v, "a journal displacement in metres is < 0.05 m (given in mm?)", file=file)
+        out[k] = (float(v), scale_of(k, float(v), clearance, max(forces) if forces and k.endswith("_n") else None))
+    if "whirl_direction" in out and out["whirl_direction"][0] == "none":
+        for k in ("whirl_frequency_hz", "whirl_onset_s"):
+            if k in out:
+                raise InputError(f"{where}.{k}", table[k], "a whirl frequency/onset needs whirl_direction forward or "
+                                 "backward", file=file)
     return out
 
 
 def gap(measured: dict, simulated: dict, weights: dict | None = None) -> tuple[float, list[dict]]:
     """Weighted normalised distance between two feature sets, and the per-feature table."""
-    weights = weights or {}
+    rows = _rows(measured, simulated, weights or {})
+    return _combine(rows), rows
+
+
+def gap_points(measured: list[dict], simulated: list[dict], names: list[str] | None = None,
+               weights: dict | None = None) -> tuple[float, list[dict]]:
+    """One gap over several operating points: the rows of every point (``point`` = its name) in
+    one weighted RMS, so a point with more measured features weighs more."""
+    rows = []
+    for i, (m, s) in enumerate(zip(measured, simulated)):
+        for r in _rows(m, s, weights or {}):
+            rows.append({"point": names[i] if names else str(i), **r})
+    return _combine(rows), rows
+
+
+def _combine(rows) -> float:
+    if not rows:
+        return float("nan")
+    w = np.array([r["weight"] for r in rows])
+    d = np.array([r["distance"] for r in rows])
+    return float(math.sqrt(np.sum(w * d * d) / np.sum(w)))
+
+
+def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
     rows = []
     dm = measured.get("whirl_direction", (None,))[0]
     ds = simulated.get("whirl_direction", (None,))[0]
     same_direction = dm == ds
-    for name in sorted(set(measured) & set(simulated)):
+    for name in sorted(measured):
         vm, sm = measured[name]
-        vs, ss = simulated[name]
+        vs, ss = simulated.get(name, (None, None))
         if name == "whirl_direction":
-            d = 0.0 if same_direction else DIRECTION_MISMATCH
-        else:
-            if name in ("whirl_frequency_hz", "whirl_onset_s") and not same_direction:
+            if name not in simulated:
                 continue
+            d = 0.0 if same_direction else DIRECTION_MISMATCH
+        elif name in ("whirl_frequency_hz", "whirl_onset_s") and not same_direction:
+            if dm in (None, "none") or ds is None:
+                continue
+            d = DIRECTION_MISMATCH  # the measured whirl is not reproduced (model: none or the other way)
+            vs = vs if name in simulated else None
+        else:
             scale = sm or ss
             if vm is None or vs is None or not scale:
                 continue
-            d = abs(vm - vs) / scale
+            d = soft_cap(abs(vm - vs) / scale)
         rows.append({"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
                      "weight": weights.get(name, 1.0)})
-    if not rows:
-        return float("nan"), rows
-    w = np.array([r["weight"] for r in rows])
-    d = np.array([r["distance"] for r in rows])
-    return float(math.sqrt(np.sum(w * d * d) / np.sum(w))), rows
+    return rows

@@ -12,6 +12,12 @@ Channel names carry their unit (SI unless named): ``time_s`` and any subset of::
 Channels may have different sampling (NaN where a channel has no sample), missing channels are
 fine, and the drop instant is aligned by ``time_offset_s`` (the time of the drop in the file's
 clock, subtracted) or detected from the vertical displacement (:func:`detect_drop`).
+
+Feature tables (``.toml``/``.json``, format in ``docs/measured_data.md``): either one
+``[features]`` table (one operating point: the scenario as it is), or one table per operating
+point ``[points.NAME]`` with ``set`` (the scenario overrides that define the point, e.g.
+``set.operating.speed_rpm = 3000.0``) and ``features`` (the measured features there). Example:
+``scenarios/measured/paper_table2_fig39.toml``.
 """
 
 from __future__ import annotations
@@ -35,12 +41,23 @@ _FROM_RESULTS = {"DE_y_m": "DE_y_m", "DE_z_m": "DE_z_m", "NDE_y_m": "NDE_y_m", "
 
 
 @dataclass
+class OperatingPoint:
+    """One operating point of a feature table: scenario overrides and the measured features there
+    (raw table values; checked and scaled by :func:`rotorlanding.features.features_from_table`)."""
+
+    name: str
+    overrides: list[str]
+    features: dict
+
+
+@dataclass
 class Measurement:
     """Time series per channel, each with its own valid samples: channel -> (t [s], values)."""
 
     channels: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
     features: dict = field(default_factory=dict)  # feature-level data (measured features)
     source: str = ""
+    points: list[OperatingPoint] = field(default_factory=list)  # multi-point feature table
 
     def has(self, name: str) -> bool:
         return name in self.channels
@@ -49,7 +66,8 @@ class Measurement:
         return self.channels[name]
 
     def shifted(self, dt: float) -> "Measurement":
-        return Measurement({k: (t - dt, v) for k, (t, v) in self.channels.items()}, dict(self.features), self.source)
+        return Measurement({k: (t - dt, v) for k, (t, v) in self.channels.items()}, dict(self.features), self.source,
+                           list(self.points))
 
 
 def _from_columns(cols: dict[str, np.ndarray], source: str) -> Measurement:
@@ -112,13 +130,78 @@ def load_measurement(path, *, time_offset_s: float = 0.0) -> Measurement:
                         res["series"][f"{b}_rub_force_{ax}_n"]
         m = _from_columns(cols, str(path))
     elif suffix in (".toml", ".json"):
-        data = tomllib.loads(path.read_text()) if suffix == ".toml" else json.loads(path.read_text())
-        if "features" not in data or not isinstance(data["features"], dict):
-            raise InputError("features", None, "a feature table needs a [features] table", file=str(path))
-        return Measurement(features=data["features"], source=str(path))
+        return _feature_table(path, suffix)
     else:
         raise InputError("--measured", str(path), "must be .csv, .mat, .h5 or a .toml/.json feature table")
     return m.shifted(time_offset_s) if time_offset_s else m
+
+
+def _override_text(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return json.dumps(v)
+    return repr(v)
+
+
+def _flatten(prefix: str, node, out: list[tuple[str, object]]):
+    if isinstance(node, dict):
+        for k, v in node.items():
+            _flatten(f"{prefix}.{k}" if prefix else k, v, out)
+    else:
+        out.append((prefix, node))
+
+
+def _feature_table(path: Path, suffix: str) -> Measurement:
+    try:
+        data = tomllib.loads(path.read_text()) if suffix == ".toml" else json.loads(path.read_text())
+    except (tomllib.TOMLDecodeError, json.JSONDecodeError) as exc:
+        raise InputError("(file)", str(exc).splitlines()[0], f"valid {suffix[1:].upper()}", file=str(path)) from None
+    allowed_top = {"title", "source", "notes", "features", "points"}
+    for k in data:
+        if k not in allowed_top:
+            raise InputError(k, data[k] if not isinstance(data[k], dict) else "(table)",
+                             "unknown key; a feature table has [features] (one point) or [points.NAME] tables "
+                             "(and optional title, source, notes)", file=str(path))
+    if ("features" in data) == ("points" in data):
+        raise InputError("features/points", None, "a feature table needs either one [features] table or "
+                         "[points.NAME] tables (one per operating point)", file=str(path))
+    if "features" in data:
+        if not isinstance(data["features"], dict) or not data["features"]:
+            raise InputError("features", data["features"], "must be a non-empty table of measured features",
+                             file=str(path))
+        return Measurement(features=data["features"], source=str(path))
+    pts = data["points"]
+    if not isinstance(pts, dict) or not pts:
+        raise InputError("points", pts, "must hold one table per operating point, e.g. [points.rpm_3000]",
+                         file=str(path))
+    points = []
+    for name, p in pts.items():
+        where = f"points.{name}"
+        if not isinstance(p, dict):
+            raise InputError(where, p, "must be a table with set and features", file=str(path))
+        for k in p:
+            if k not in ("set", "features", "notes"):
+                raise InputError(f"{where}.{k}", p[k] if not isinstance(p[k], dict) else "(table)",
+                                 "unknown key; allowed: set, features, notes", file=str(path))
+        if not isinstance(p.get("set"), dict) or not p["set"]:
+            raise InputError(f"{where}.set", p.get("set"), "missing operating-point overrides: give the scenario "
+                             "values that define the point, e.g. set.operating.speed_rpm = 3000.0", file=str(path))
+        if not isinstance(p.get("features"), dict) or not p["features"]:
+            raise InputError(f"{where}.features", p.get("features"), "missing measured features at this point, e.g. "
+                             "features.whirl_frequency_hz = 48.0", file=str(path))
+        flat: list[tuple[str, object]] = []
+        _flatten("", p["set"], flat)
+        for key, v in flat:
+            if isinstance(v, list):
+                raise InputError(f"{where}.set.{key}", v, "a scenario value (number, true/false or string)",
+                                 file=str(path))
+        points.append(OperatingPoint(name, [f"{k}={_override_text(v)}" for k, v in flat], p["features"]))
+    sets = [tuple(sorted(p.overrides)) for p in points]
+    if len(set(sets)) < len(sets):
+        raise InputError("points", [p.name for p in points], "two operating points have the same overrides",
+                         file=str(path))
+    return Measurement(source=str(path), points=points)
 
 
 def detect_drop(m: Measurement, clearance: float, bearing: str = "DE") -> float | None:

@@ -60,13 +60,16 @@ def test_gap_is_zero_for_itself_and_grows_with_the_difference():
                              "DE_inner_race_speed_rpm": (t, race)})
         gaps.append(gap(fa, extract_features(other, clearance=C))[0])
     assert 0 < gaps[0] < gaps[1]
-    # a backward whirl: the direction mismatch dominates, frequencies are not compared
+    # a backward whirl: the measured (forward) whirl is not reproduced, so direction, frequency and
+    # onset each count the mismatch distance 3, the largest any feature can reach
     t3, y3, z3, *_ = _synthetic(sense=-1.0)
     back = Measurement({"DE_y_m": (t3, y3), "DE_z_m": (t3, z3), "rotor_speed_rpm": (t, rotor)})
     fb = extract_features(back, clearance=C)
     assert fb["whirl_direction"][0] == "backward"
     g, rows = gap(fa, fb)
-    assert "whirl_frequency_hz" not in [r["feature"] for r in rows] and g >= 3.0 / np.sqrt(len(rows))
+    d = {r["feature"]: r["distance"] for r in rows}
+    assert d["whirl_direction"] == d["whirl_frequency_hz"] == d["whirl_onset_s"] == 3.0
+    assert max(d.values()) == 3.0 and g >= 3.0 * np.sqrt(3 / len(rows))
 
 
 def test_mat_and_feature_table_and_bad_files(tmp_path):
@@ -97,3 +100,78 @@ def test_results_file_is_measured_data(tmp_path):
     assert detect_drop(m, C) == pytest.approx(0.0, abs=1e-3)
     f = extract_features(m, clearance=C)
     assert f["DE_vertical_min_m"][0] < -0.9 * C and f["DE_force_peak_n"][0] > 500
+
+
+def test_distances_are_bounded_by_the_direction_mismatch():
+    from rotorlanding.features import MAX_DISTANCE, soft_cap
+
+    assert soft_cap(1.0) == pytest.approx(1.0, rel=0.005) and soft_cap(2.0) == pytest.approx(1.91, abs=0.01)
+    assert soft_cap(6.0) < soft_cap(60.0) < MAX_DISTANCE == 3.0
+    m = {"whirl_direction": ("forward", None), "whirl_frequency_hz": (65.0, 2.0)}
+    # the right direction at a wrong frequency is closer than no whirl at all
+    g_far, _ = gap(m, {"whirl_direction": ("forward", None), "whirl_frequency_hz": (90.0, 2.7)})
+    g_none, rows = gap(m, {"whirl_direction": ("none", None)})
+    assert g_far < g_none == 3.0 and [r["feature"] for r in rows] == ["whirl_direction", "whirl_frequency_hz"]
+
+
+def test_table_scales_follow_the_extraction_rules():
+    from rotorlanding.features import FEATURE_UNITS, scale_of
+
+    t, y, z, rotor, race = _synthetic()
+    fz = np.where(z <= -C, 3000.0, 0.0)
+    m = Measurement({"DE_y_m": (t, y), "DE_z_m": (t, z), "rotor_speed_rpm": (t, rotor),
+                     "DE_inner_race_speed_rpm": (t, race), "DE_force_y_n": (t, 0 * t), "DE_force_z_n": (t, fz),
+                     "axial_m": (t, 1e-5 * np.sin(t))})
+    f = extract_features(m, clearance=C)
+    assert set(f) == set(FEATURE_UNITS) - {"DE_first_rebound_m"}
+    peak = f["DE_force_peak_n"][0]
+    for name, (v, s) in f.items():
+        assert scale_of(name, v, C, peak if name.endswith("_n") else None) == pytest.approx(s) if s else s is None
+
+
+def test_paper_table_agrees_with_validate_paper(tmp_path):
+    from rotorlanding.features import features_from_table
+    from rotorlanding.validate import PAPER
+
+    root = Path(__file__).resolve().parents[1]
+    m = load_measurement(root / "scenarios" / "measured" / "paper_table2_fig39.toml")
+    fig, t2 = PAPER["fig39"], PAPER["table2"]["experimental"]
+    assert [p.overrides for p in m.points] == [[f"operating.speed_rpm={float(r)!r}"] for r in fig["speed_rpm"]]
+    assert [p.features["whirl_frequency_hz"] for p in m.points] == fig["experimental_hz"]
+    assert all(p.features["whirl_direction"] == "forward" for p in m.points)
+    p7 = m.points[fig["speed_rpm"].index(7000)].features
+    assert (p7["DE_vertical_max_m"], p7["DE_vertical_min_m"], p7["DE_force_z_max_n"], p7["DE_force_z_min_n"]) == \
+        (t2["v_disp_max_m"], t2["v_disp_min_m"], t2["v_force_max_n"], t2["v_force_min_n"])
+    f = features_from_table(p7, C)
+    assert f["DE_force_z_min_n"][1] == f["DE_force_z_max_n"][1] == pytest.approx(0.15 * 4500.0)
+    assert f["DE_vertical_max_m"][1] == pytest.approx(0.1 * C) and f["whirl_frequency_hz"][1] == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("text, words", [
+    ('[points.a]\nset.operating.speed_rpm = 3000.0\nfeatures.whirl_frequency_mhz = 48.0\n',
+     ["points.a.features.whirl_frequency_mhz", "wrong unit", "whirl_frequency_hz"]),
+    ('[points.a]\nset.operating.speed_rpm = 3000.0\nfeatures.whirl_speed_hz = 48.0\n',
+     ["points.a.features.whirl_speed_hz", "unknown feature", "allowed"]),
+    ('[points.a]\nset.operating.speed_rpm = 3000.0\nfeatures.DE_vertical_max_m = 0.15\n',
+     ["DE_vertical_max_m", "mm?"]),
+    ('[points.a]\nset.operating.speed_rpm = 3000.0\nfeatures.whirl_direction = "sideways"\n',
+     ["whirl_direction", "none, forward, backward"]),
+    ('[points.a]\nfeatures.whirl_frequency_hz = 48.0\n', ["points.a.set", "missing operating-point overrides"]),
+    ('[points.a]\nset.operating.speed_rpm = 3000.0\n', ["points.a.features", "missing measured features"]),
+    ('[points.a]\nset.operating.sped_rpm = 3000.0\nfeatures.whirl_frequency_hz = 48.0\n',
+     ["points.a.set", "sped_rpm", "not valid for"]),
+    ('[point.a]\nset.operating.speed_rpm = 3000.0\n', ["point", "unknown key"]),
+])
+def test_bad_feature_tables_one_line_errors(tmp_path, capsys, text, words):
+    from rotorlanding.cli import main
+
+    root = Path(__file__).resolve().parents[1]
+    f = tmp_path / "table.toml"
+    f.write_text(text)
+    assert main(["diagnose", "--measured", str(f), "--scenario", str(root / "scenarios" / "paper" /
+                                                                      "forward_whirl_landing.toml"),
+                 "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err and str(f) in err, err
+    for w in words:
+        assert w in err, err
