@@ -18,15 +18,32 @@ A sweep file names a base scenario and the keys to vary::
 Each case runs in its own folder ``OUT/cases/case_NNNN`` (results.h5, summary.json); the table
 ``OUT/sweep.csv`` collects the summary figures (one row per case, failed cases with their error),
 and ``OUT/whirl_map.png`` shows whirl class and frequency over the first two swept keys.
-Cases run in a local process pool (``--workers``); a case that raises is recorded as failed
-and the others go on; re-running skips cases whose summary.json is complete.
+Cases run in worker processes (``--workers``, or a Dask cluster with ``--scheduler``); a case
+that raises, or whose worker process dies, is recorded as failed with its error and the others
+go on; re-running skips cases whose summary.json is complete.
+
+Speed and reproducibility (see ``benchmarks/sweep_speedup.py``):
+
+* every case runs in a worker process, also with ``--workers 1``; local workers are forked from
+  the parent after it has imported the model code and built the first case's model once (numba
+  kernels loaded), so no worker pays imports or JIT loading again;
+* every worker runs BLAS/LAPACK single-threaded (as Dask's nanny does), so N workers do not
+  oversubscribe the cores and a case's summary is bit-identical whatever the number of workers
+  or the scheduler (multi-threaded BLAS changes float summation order);
+* the Craig-Bampton reduction is cached per worker process, keyed by the exact bytes of the FE
+  matrices and the reduction settings (a cache hit returns the same numbers as a recomputation);
+* cases are submitted longest first (t_end / step), one at a time, so the last case does not
+  leave a worker idle.
 """
 
 from __future__ import annotations
 
 import csv
+import functools
+import hashlib
 import itertools
 import json
+import os
 import time
 import traceback
 from concurrent.futures import ProcessPoolExecutor
@@ -95,14 +112,128 @@ def _overrides(fixed: dict, case: dict) -> list[str]:
     return out
 
 
+# ---------------------------------------------------------------------------------------------
+# Worker process set-up: single-threaded BLAS, Craig-Bampton cache, warm-up
+
+BLAS_ENV = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+_BLAS_SETTERS = ("openblas_set_num_threads", "openblas_set_num_threads64_", "scipy_openblas_set_num_threads",
+                 "scipy_openblas_set_num_threads64_", "MKL_Set_Num_Threads")
+_ready = False
+
+
+def limit_blas_threads(n: int = 1) -> int:
+    """Set every loaded BLAS library of this process to ``n`` threads; returns how many libraries
+    were set. Uses threadpoolctl when installed, else OpenBLAS/MKL's own setters (Linux)."""
+    for k in BLAS_ENV:  # for processes this one starts
+        os.environ[k] = str(n)
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        pass
+    else:
+        threadpool_limits(n)
+        return -1
+    import ctypes
+
+    try:
+        with open("/proc/self/maps") as fh:
+            libs = {line.split()[-1] for line in fh if ".so" in line and ("blas" in line or "mkl" in line)}
+    except OSError:
+        return 0
+    count = 0
+    for lib in sorted(libs):
+        try:
+            dll = ctypes.CDLL(lib)
+        except OSError:
+            continue
+        for name in _BLAS_SETTERS:
+            f = getattr(dll, name, None)
+            if f is not None:
+                f.argtypes = [ctypes.c_int]
+                f.restype = None
+                f(n)
+                count += 1
+                break
+    return count
+
+
+class _CraigBamptonCache:
+    """``landing.craig_bampton`` memoised on the exact FE matrices and reduction settings."""
+
+    def __init__(self, fn, size: int = 8):
+        self.fn, self.size, self.store, self.hits = fn, size, {}, 0
+
+    def key(self, fe, stations, n_modes, rotations):
+        h = hashlib.sha256()
+        for a in (fe.M, fe.K, fe.C, fe.G):
+            a = np.ascontiguousarray(a)
+            h.update(repr((a.shape, a.dtype.str)).encode())
+            h.update(a.tobytes())
+        nodes = tuple(fe.station_nodes.get(s) for s in stations)
+        return h.hexdigest(), tuple(stations), nodes, int(n_modes), bool(rotations)
+
+    def __call__(self, fe, stations, n_modes, rotations=False):
+        from dataclasses import replace
+
+        k = self.key(fe, stations, n_modes, rotations)
+        cb = self.store.get(k)
+        if cb is None:
+            cb = self.fn(fe, stations, n_modes, rotations)
+            if len(self.store) >= self.size:
+                self.store.pop(next(iter(self.store)))
+            self.store[k] = cb
+        else:
+            self.hits += 1
+        # fresh arrays and this case's FE model: callers may not alias the cached copy
+        return replace(cb, M=cb.M.copy(), K=cb.K.copy(), C=cb.C.copy(), G=cb.G.copy(), T=cb.T.copy(),
+                       names=list(cb.names), fe=fe, boundary=list(cb.boundary))
+
+
+def worker_setup() -> None:
+    """Once per worker process: single-threaded BLAS, Craig-Bampton cache, model code imported."""
+    global _ready
+    if _ready:
+        return
+    limit_blas_threads(1)
+    from . import landing
+    from . import run  # noqa: F401  (exudyn, numba kernels, h5py)
+
+    if not isinstance(landing.craig_bampton, _CraigBamptonCache):
+        landing.craig_bampton = _CraigBamptonCache(landing.craig_bampton)
+    _ready = True
+
+
+def warm_up(job, setup: bool = True) -> None:
+    """Build (not solve) the model of ``job``: model code imported, numba kernels loaded (and,
+    with ``setup``, this process set up as a worker: BLAS threads, reduction cache)."""
+    if setup:
+        worker_setup()
+    from .exudyn_model import build_exudyn
+    from .landing import build_spec
+    from .scenario import load_scenario
+
+    try:
+        build_exudyn(build_spec(load_scenario(job[1], job[2])))
+    except Exception:  # a bad case fails later, in run_case, where it is recorded
+        pass
+
+
+def _marker(job) -> Path:
+    return Path(job[3]) / "cases" / f"case_{job[0]:04d}" / ".running"
+
+
 def run_case(job) -> dict:
     """Run one case (in a worker); never raises: failures come back as a row."""
+    worker_setup()
     from .run import run_scenario
     from .scenario import load_scenario
 
     idx, base, overrides, out_dir, plots = job
     row = {"case": idx, "status": "ok", "error": ""}
     folder = Path(out_dir) / "cases" / f"case_{idx:04d}"
+    folder.mkdir(parents=True, exist_ok=True)
+    marker = _marker(job)
+    marker.write_text(str(os.getpid()))
     w0 = time.perf_counter()
     try:
         sc = load_scenario(base, overrides)
@@ -111,12 +242,18 @@ def run_case(job) -> dict:
         if not s.get("complete", True):
             row["status"], row["error"] = "incomplete", s.get("message", "")
     except Exception as exc:  # a failing case is recorded, the sweep goes on
-        row["status"] = "failed"
-        row["error"] = f"{type(exc).__name__}: {exc}".replace("\n", " ")
-        folder.mkdir(parents=True, exist_ok=True)
-        (folder / "error.txt").write_text(traceback.format_exc())
+        row.update(_failed_row(idx, f"{type(exc).__name__}: {exc}", out_dir, traceback.format_exc()))
     row["wall_s"] = round(time.perf_counter() - w0, 3)
+    marker.unlink(missing_ok=True)
     return row
+
+
+def _failed_row(idx: int, error: str, out_dir, details: str | None = None) -> dict:
+    """The row of a failed case; its error (or ``details``) also goes to the case's error.txt."""
+    folder = Path(out_dir) / "cases" / f"case_{idx:04d}"
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "error.txt").write_text(details or error + "\n")
+    return {"case": idx, "status": "failed", "error": error.replace("\n", " ")}
 
 
 def summary_row(s: dict) -> dict:
@@ -140,6 +277,50 @@ def _finished(out_dir: Path, idx: int):
     return None
 
 
+def _cost(fixed: dict, case: dict, base_t_end: float, base_step: float) -> float:
+    """Relative cost of a case for longest-first ordering: number of time steps."""
+    def get(key, default):
+        v = case.get(key, fixed.get(key, default))
+        return float(v) if isinstance(v, (int, float)) else default
+
+    return get("operating.t_end", base_t_end) / max(get("solver.step", base_step), 1e-12)
+
+
+def _run_local(jobs: list, workers: int) -> list[dict]:
+    """Run jobs (in the given order) in forked worker processes; a case whose worker dies is
+    retried alone and recorded as failed if it kills its worker again."""
+    import multiprocessing as mp
+    from concurrent.futures import as_completed
+    from concurrent.futures.process import BrokenProcessPool
+
+    ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else None
+    results, pending, alone = [], list(jobs), []
+    while pending or alone:
+        batch, n = (pending, min(workers, len(pending))) if not alone else (alone[:1], 1)
+        for j in batch:
+            _marker(j).unlink(missing_ok=True)
+        broken = []
+        with ProcessPoolExecutor(n, mp_context=ctx, initializer=worker_setup) as ex:
+            futs = {ex.submit(run_case, j): j for j in batch}
+            for f in as_completed(futs):
+                try:
+                    results.append(f.result())
+                except BrokenProcessPool:
+                    broken.append(futs[f])
+        if alone:
+            alone = alone[1:]
+            if broken:
+                j = broken[0]
+                results.append(_failed_row(j[0], "worker process died while running this case (a crash in "
+                                                 "the solver?); the other cases were not affected", j[3]))
+            continue
+        # the cases that were running when a worker died are retried one at a time
+        running = [j for j in broken if _marker(j).is_file()]
+        alone = running
+        pending = [j for j in broken if j not in running]
+    return results
+
+
 def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) -> list[dict]:
     sw = load_sweep(path)
     out = Path(out_dir)
@@ -158,15 +339,20 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
         else:
             jobs.append((idx, str(sw["base"]), _overrides(sw["fixed"], case), str(out), sw["plots"]))
     if jobs:
+        from .scenario import load_scenario
+
+        base = load_scenario(sw["base"])
+        cost = {j[0]: _cost(sw["fixed"], sw["cases"][j[0]], base.t_end, base.solver.step) for j in jobs}
+        jobs.sort(key=lambda j: (-cost[j[0]], j[0]))  # longest first
         if scheduler:
             from .distributed import map_on_dask
 
-            results = map_on_dask(run_case, jobs, scheduler)
-        elif workers > 1:
-            with ProcessPoolExecutor(workers) as ex:
-                results = list(ex.map(run_case, jobs))
+            results = map_on_dask(run_case, jobs, scheduler, warm_up=functools.partial(warm_up, jobs[0]),
+                                  on_error=lambda job, err: _failed_row(job[0], err, job[3]))
         else:
-            results = [run_case(j) for j in jobs]
+            # in the parent (its own BLAS threads and functions untouched): forked workers start warm
+            warm_up(jobs[0], setup=False)
+            results = _run_local(jobs, workers)
         for r in results:
             rows[r["case"]] = r
     table = [rows[i] for i in sorted(rows)]
