@@ -33,7 +33,8 @@ Speed and reproducibility (see ``benchmarks/sweep_speedup.py``):
 * the Craig-Bampton reduction is cached per worker process, keyed by the exact bytes of the FE
   matrices and the reduction settings (a cache hit returns the same numbers as a recomputation);
 * cases are submitted longest first (t_end / step), one at a time, so the last case does not
-  leave a worker idle.
+  leave a worker idle; the parent imports matplotlib for the whirl map as soon as a worker has
+  run out of cases, not after the last case.
 """
 
 from __future__ import annotations
@@ -286,9 +287,10 @@ def _cost(fixed: dict, case: dict, base_t_end: float, base_step: float) -> float
     return get("operating.t_end", base_t_end) / max(get("solver.step", base_step), 1e-12)
 
 
-def _run_local(jobs: list, workers: int) -> list[dict]:
+def _run_local(jobs: list, workers: int, idle=None) -> list[dict]:
     """Run jobs (in the given order) in forked worker processes; a case whose worker dies is
-    retried alone and recorded as failed if it kills its worker again."""
+    retried alone and recorded as failed if it kills its worker again. ``idle()`` is called once
+    as soon as a worker has nothing left to do (the parent uses that core for its own work)."""
     import multiprocessing as mp
     from concurrent.futures import as_completed
     from concurrent.futures.process import BrokenProcessPool
@@ -302,7 +304,12 @@ def _run_local(jobs: list, workers: int) -> list[dict]:
         broken = []
         with ProcessPoolExecutor(n, mp_context=ctx, initializer=worker_setup) as ex:
             futs = {ex.submit(run_case, j): j for j in batch}
+            inflight = len(futs)
             for f in as_completed(futs):
+                inflight -= 1
+                if idle is not None and inflight < n:
+                    idle()
+                    idle = None
                 try:
                     results.append(f.result())
                 except BrokenProcessPool:
@@ -352,7 +359,7 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
         else:
             # in the parent (its own BLAS threads and functions untouched): forked workers start warm
             warm_up(jobs[0], setup=False)
-            results = _run_local(jobs, workers)
+            results = _run_local(jobs, workers, idle=_import_plotting)
         for r in results:
             rows[r["case"]] = r
     table = [rows[i] for i in sorted(rows)]
@@ -367,10 +374,15 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     return table
 
 
-def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
+def _import_plotting():
     import matplotlib
 
     matplotlib.use("Agg")
+    import matplotlib.pyplot  # noqa: F401
+
+
+def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
+    _import_plotting()
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(7, 5))
