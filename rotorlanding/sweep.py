@@ -318,6 +318,7 @@ def _run_local(jobs: list, workers: int, idle=None) -> list[dict]:
             alone = alone[1:]
             if broken:
                 j = broken[0]
+                _marker(j).unlink(missing_ok=True)
                 results.append(_failed_row(j[0], "worker process died while running this case (a crash in "
                                                  "the solver?); the other cases were not affected", j[3]))
             continue
@@ -348,8 +349,12 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     if jobs:
         from .scenario import load_scenario
 
-        base = load_scenario(sw["base"])
-        cost = {j[0]: _cost(sw["fixed"], sw["cases"][j[0]], base.t_end, base.solver.step) for j in jobs}
+        try:
+            base = load_scenario(sw["base"], _overrides(sw["fixed"], {}))
+            t_end, step = base.t_end, base.solver.step
+        except InputError:  # the cases' own values may complete it: they fail (or not) one by one
+            t_end, step = 1.0, 1.0
+        cost = {j[0]: _cost(sw["fixed"], sw["cases"][j[0]], t_end, step) for j in jobs}
         jobs.sort(key=lambda j: (-cost[j[0]], j[0]))  # longest first
         if scheduler:
             from .distributed import map_on_dask

@@ -119,6 +119,7 @@ def test_worker_crash_is_recorded_and_the_others_complete(tmp_path, monkeypatch)
     assert [r["status"] for r in rows] == ["ok", "failed", "ok", "ok", "ok"]
     assert "worker process died" in rows[1]["error"]
     assert (tmp_path / "cases" / "case_0001" / "error.txt").is_file()
+    assert not list(tmp_path.glob("cases/*/.running"))
 
 
 def test_scheduler_errors_are_one_line(tmp_path, capsys, monkeypatch):
