@@ -230,11 +230,12 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                       if m is not None and b == m and a != m]
             significant = (current_gap > noise_gap and best["score"] < base_score - 2.0
                            and (relative or (bool(fixed) and not broken)))
-            keys = ("effect", "gap", "parameters", "score", "directions", "evaluations", "not_applicable", "failed")
+            keys = ("effect", "gap", "parameters", "score", "directions", "evaluations", "not_applicable", "failed", "rows")
             steps.append({"gap_before": current_gap, "base_score": base_score,
                           "candidates": [{k: r[k] for k in keys if k in r} for r in results],
                           "named_effect": best["effect"] if significant else None,
-                          "relative_improvement": 1 - best["gap"] / current_gap if math.isfinite(best["gap"]) else 0.0,
+                          "relative_improvement": 1 - best["gap"] / current_gap
+                          if math.isfinite(best["gap"]) and current_gap > 0 else 0.0,
                           "whirl_direction_fixed_at": fixed, "whirl_direction_broken_at": broken,
                           "significant_by": ("relative improvement" if relative else "whirl direction")
                           if significant else None})
@@ -369,10 +370,10 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
         _feature_figure(res, out / fig_name)
     multi = len(res["points"]) > 1 or any(p["overrides"] for p in res["points"])
     model = f"`{scenario_path}`" + (f" with `{' '.join(res['model_overrides'])}`" if res["model_overrides"] else "")
+    shrink = (f" ({100 * (1 - res['gap_after'] / res['gap_before']):.0f} % smaller)"
+              if res["gap_before"] and math.isfinite(res["gap_before"]) else "")
     lines = ["# Model-gap diagnosis", "",
-             f"Model: {model}. Gap before: **{res['gap_before']:.3f}**, after: **{res['gap_after']:.3f}** "
-             f"({100 * (1 - res['gap_after'] / res['gap_before']):.0f} % smaller)."
-             if res["gap_before"] else "", ""]
+             f"Model: {model}. Gap before: **{res['gap_before']:.3f}**, after: **{res['gap_after']:.3f}**{shrink}.", ""]
     if multi:
         lines.append(f"Operating points: {', '.join(p['name'] + ' (' + ' '.join(p['overrides']) + ')' for p in res['points'])}; "
                      f"{res['simulations']} simulations, {res['wall_s']:.0f} s wall on {res['workers']} workers.")
