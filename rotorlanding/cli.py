@@ -225,7 +225,16 @@ def cmd_diagnose(args) -> int:
     from .measured import detect_drop, load_measurement
     from .scenario import load_scenario
 
+    for opt, v in (("--workers", args.workers), ("--maxiter", args.maxiter), ("--max-effects", args.max_effects)):
+        if v < 1:
+            raise InputError(opt, v, "must be >= 1")
     sets = list(args.set or [])
+    from .scenario import EFFECTS
+
+    for item in sets:
+        key = item.split("=", 1)[0].strip()
+        if key.startswith("effects.") and key[8:] not in EFFECTS:
+            raise InputError(f"--set {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
     if args.t_end is not None:
         sets.append(f"operating.t_end={args.t_end!r}")
     sc = load_scenario(args.scenario, sets)

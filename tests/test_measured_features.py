@@ -175,3 +175,19 @@ def test_bad_feature_tables_one_line_errors(tmp_path, capsys, text, words):
     assert err.count("\n") == 1 and "Traceback" not in err and str(f) in err, err
     for w in words:
         assert w in err, err
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--set", "effects.axial_rubb=false"], ["effects.axial_rubb", "unknown effect", "axial_rub"]),
+    (["--candidates", "axial,windage"], ["--candidates", "'axial'", "unknown effect"]),
+    (["--workers", "0"], ["--workers", ">= 1"]),
+])
+def test_bad_diagnose_options_one_line_errors(tmp_path, capsys, extra, words):
+    from rotorlanding.cli import main
+
+    root = Path(__file__).resolve().parents[1]
+    assert main(["diagnose", "--measured", str(root / "scenarios" / "measured" / "paper_table2_fig39.toml"),
+                 "--scenario", str(root / "scenarios" / "paper" / "forward_whirl_landing.toml"),
+                 "--out", str(tmp_path / "o")] + extra) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and all(w in err for w in words), err
