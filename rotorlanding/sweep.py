@@ -117,45 +117,72 @@ def _overrides(fixed: dict, case: dict) -> list[str]:
 # Worker process set-up: single-threaded BLAS, Craig-Bampton cache, warm-up
 
 BLAS_ENV = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
-_BLAS_SETTERS = ("openblas_set_num_threads", "openblas_set_num_threads64_", "scipy_openblas_set_num_threads",
-                 "scipy_openblas_set_num_threads64_", "MKL_Set_Num_Threads")
+_BLAS_API = (("openblas_set_num_threads", "openblas_get_num_threads"),
+             ("openblas_set_num_threads64_", "openblas_get_num_threads64_"),
+             ("scipy_openblas_set_num_threads", "scipy_openblas_get_num_threads"),
+             ("scipy_openblas_set_num_threads64_", "scipy_openblas_get_num_threads64_"),
+             ("MKL_Set_Num_Threads", "MKL_Get_Max_Threads"))
 _ready = False
 
 
-def limit_blas_threads(n: int = 1) -> int:
-    """Set every loaded BLAS library of this process to ``n`` threads; returns how many libraries
-    were set. Uses threadpoolctl when installed, else OpenBLAS/MKL's own setters (Linux)."""
-    for k in BLAS_ENV:  # for processes this one starts
-        os.environ[k] = str(n)
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:
-        pass
-    else:
-        threadpool_limits(n)
-        return -1
+def _blas_libraries() -> list:
+    """(set, get) ctypes functions of every BLAS library loaded in this process (Linux)."""
     import ctypes
 
     try:
         with open("/proc/self/maps") as fh:
-            libs = {line.split()[-1] for line in fh if ".so" in line and ("blas" in line or "mkl" in line)}
+            paths = {line.split()[-1] for line in fh if ".so" in line and ("blas" in line or "mkl" in line)}
     except OSError:
-        return 0
-    count = 0
-    for lib in sorted(libs):
+        return []
+    out, seen = [], set()
+    for path in sorted(paths):
         try:
-            dll = ctypes.CDLL(lib)
+            dll = ctypes.CDLL(path)
         except OSError:
             continue
-        for name in _BLAS_SETTERS:
-            f = getattr(dll, name, None)
-            if f is not None:
-                f.argtypes = [ctypes.c_int]
-                f.restype = None
-                f(n)
-                count += 1
+        for set_name, get_name in _BLAS_API:
+            f, g = getattr(dll, set_name, None), getattr(dll, get_name, None)
+            if f is not None and g is not None:
+                key = ctypes.cast(f, ctypes.c_void_p).value
+                if key not in seen:
+                    seen.add(key)
+                    f.argtypes, f.restype, g.argtypes, g.restype = [ctypes.c_int], None, [], ctypes.c_int
+                    out.append((f, g))
                 break
-    return count
+    return out
+
+
+def limit_blas_threads(n: int = 1):
+    """Set every loaded BLAS library of this process (and processes it starts) to ``n`` threads.
+    Returns a function that restores the previous settings. Uses threadpoolctl when installed,
+    else OpenBLAS/MKL's own setters."""
+    env = {k: os.environ.get(k) for k in BLAS_ENV}
+    for k in BLAS_ENV:
+        os.environ[k] = str(n)
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        libs = _blas_libraries()
+        before = [g() for f, g in libs]
+        for f, g in libs:
+            f(n)
+
+        def undo_libs():
+            for (f, g), m in zip(libs, before):
+                f(m)
+    else:
+        limits = threadpool_limits(n)
+        undo_libs = limits.restore_original_limits
+
+    def restore():
+        undo_libs()
+        for k, v in env.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
+
+    return restore
 
 
 class _CraigBamptonCache:
@@ -190,25 +217,34 @@ class _CraigBamptonCache:
                        names=list(cb.names), fe=fe, boundary=list(cb.boundary))
 
 
-def worker_setup() -> None:
-    """Once per worker process: single-threaded BLAS, Craig-Bampton cache, model code imported."""
+def worker_setup():
+    """Once per worker process: single-threaded BLAS, Craig-Bampton cache, model code imported.
+    Returns a function that undoes it (for a parent process that forks workers)."""
     global _ready
     if _ready:
-        return
-    limit_blas_threads(1)
+        return lambda: None
+    restore_blas = limit_blas_threads(1)
     from . import landing
     from . import run  # noqa: F401  (exudyn, numba kernels, h5py)
 
-    if not isinstance(landing.craig_bampton, _CraigBamptonCache):
-        landing.craig_bampton = _CraigBamptonCache(landing.craig_bampton)
+    original = landing.craig_bampton
+    if not isinstance(original, _CraigBamptonCache):
+        landing.craig_bampton = _CraigBamptonCache(original)
     _ready = True
 
+    def undo():
+        global _ready
+        restore_blas()
+        landing.craig_bampton = original
+        _ready = False
 
-def warm_up(job, setup: bool = True) -> None:
-    """Build (not solve) the model of ``job``: model code imported, numba kernels loaded (and,
-    with ``setup``, this process set up as a worker: BLAS threads, reduction cache)."""
-    if setup:
-        worker_setup()
+    return undo
+
+
+def warm_up(job) -> None:
+    """Set this process up as a worker and build (not solve) the model of ``job``: model code
+    imported, numba kernels loaded, reduction cached."""
+    worker_setup()
     from .exudyn_model import build_exudyn
     from .landing import build_spec
     from .scenario import load_scenario
@@ -362,9 +398,14 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
             results = map_on_dask(run_case, jobs, scheduler, warm_up=functools.partial(warm_up, jobs[0]),
                                   on_error=lambda job, err: _failed_row(job[0], err, job[3]))
         else:
-            # in the parent (its own BLAS threads and functions untouched): forked workers start warm
-            warm_up(jobs[0], setup=False)
-            results = _run_local(jobs, workers, idle=_import_plotting)
+            # the parent is a worker while it forks workers, so they start warm (imports, numba
+            # kernels, reduction cache); afterwards its BLAS threads and functions are restored
+            undo = worker_setup()
+            try:
+                warm_up(jobs[0])
+                results = _run_local(jobs, workers, idle=_import_plotting)
+            finally:
+                undo()
         for r in results:
             rows[r["case"]] = r
     table = [rows[i] for i in sorted(rows)]
