@@ -12,12 +12,13 @@ identical summaries (checked).
 The machine has 2 cores: run it when the load average is low (the ratio is meaningless when
 other processes compete for the cores; the load at the start of each run is printed with it).
 
-Measured on the quiet 2-core machine (load 0.2-0.7), 16 cases:
-  0.5 s cases (0.55-0.61 s wall each): sweep 10.9 / 6.15 s = 1.77x and 10.2 / 6.1 s = 1.67x,
-    parallel phase 1.92x / 1.80x, whole process 1.72x / 1.62x;
-  1.0 s cases (1.0 s wall each): sweep 17.3 / 9.6 s = 1.81x, parallel phase 1.90x, process 1.77x.
-The serial part (~1 s: imports, 0.9 s of it scipy.signal; kernel load; whirl map) and a case
-running ~5 % slower when both cores are busy keep short-case sweeps below 1.8x.
+Measured on the quiet 2-core machine, 16 cases (2026-11-23, after whirl.py stopped importing
+scipy.signal, ~0.6 s less serial start):
+  0.5 s cases (0.58 s wall each): sweep 1.84x, 1.75x, 1.75x (parallel phase 1.85-1.94x);
+  1.0 s cases (1.03 s wall each): sweep 1.80x, 1.95x, 1.92x (parallel phase 1.86-2.01x,
+    whole process 1.77-1.91x).
+The serial part (~0.65 s: parent imports, kernel load, table and whirl map) and a case running
+~5 % slower when both cores are busy keep short-case sweeps near 1.8x.
 
 usage: python benchmarks/sweep_speedup.py [--t-end 0.5] [--repeats 1] [--json out.json]
 """

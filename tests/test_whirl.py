@@ -224,3 +224,14 @@ def test_bad_series_raise_value_error():
         whirl_analysis(t[::-1], y, z, clearance=C)
     with pytest.raises(ValueError, match="window"):
         full_spectrum(t, y, z, window="no-such-window")
+
+
+def test_builtin_windows_equal_scipy():
+    from scipy.signal import get_window
+
+    from rotorlanding.whirl import _window
+
+    for n in (1, 2, 7, 64, 1001):
+        for name in ("hann", "boxcar"):
+            np.testing.assert_allclose(_window(name, n), get_window(name, n, fftbins=True), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(_window("hamming", 16), get_window("hamming", 16, fftbins=True))
