@@ -44,7 +44,7 @@ import math
 import resource
 import sys
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -55,7 +55,7 @@ from .postprocess import INPUTS, MECHANISMS, energy_summary, evaluate, uniform
 from .scenario import Scenario, scenario_from_dict
 
 CUMULATIVE_PREFIXES = ("dissipated_", "input_")
-FIELDS = ("stop_speed_rpm", "chunk_s", "decimate_every", "fast_force_rate_n_s")
+FIELDS = ("stop_speed_rpm", "chunk_s", "decimate_every", "fast_force_rate_n_s", "landing_s", "smooth_step")
 H5_ROW_CHUNK = 1024  # HDF5 chunk rows of the resizable datasets
 H5_COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 
@@ -68,6 +68,8 @@ class Coastdown:
     chunk_s: float = 0.1                # s: simulated length of one chunk (one Exudyn solve)
     decimate_every: int = 100           # -: in smooth phases keep every k-th output sample
     fast_force_rate_n_s: float = 2.0e5  # N/s: contact-force rate above which samples are kept at full rate
+    landing_s: float = 0.0              # s: chunks starting before this use solver.step (impacts) ...
+    smooth_step: float | None = None    # s: ... later chunks this step (None: solver.step throughout)
 
 
 def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
@@ -78,6 +80,8 @@ def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
     chunk = t.number("chunk_s", d.chunk_s, positive=True)
     k = t.integer("decimate_every", d.decimate_every, minimum=1)
     rate = t.number("fast_force_rate_n_s", d.fast_force_rate_n_s, positive=True)
+    landing = t.number("landing_s", d.landing_s, nonnegative=True)
+    smooth = t.number("smooth_step", scenario.solver.step, positive=True)
     t.finish()
     if stop >= scenario.speed_rpm:
         raise InputError("coastdown.stop_speed_rpm", stop,
@@ -90,9 +94,15 @@ def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
     if chunk < 20 * sv.output_period or chunk > 10.0:
         raise InputError("coastdown.chunk_s", chunk, f"must lie in [20 x solver.output_period "
                          f"({20 * sv.output_period:g} s), 10 s] (chunk samples are held in memory)")
+    if smooth < sv.step or smooth > chunk / 20:
+        raise InputError("coastdown.smooth_step", smooth,
+                         f"must lie in [solver.step ({sv.step:g} s), chunk_s / 20 ({chunk / 20:g} s)]")
+    n = chunk / smooth
+    if abs(n - round(n)) > 1e-6 * n:
+        raise InputError("coastdown.chunk_s", chunk, f"must be a whole multiple of coastdown.smooth_step ({smooth:g} s)")
     if scenario.spin.drive != "coast":
         raise InputError("spin.drive", scenario.spin.drive, "a coast-down needs drive = 'coast' (no drive torque)")
-    return Coastdown(stop, chunk, k, rate)
+    return Coastdown(stop, chunk, k, rate, landing, smooth)
 
 
 def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, Coastdown]:
@@ -419,7 +429,12 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
         t1 = min((k + 1) * cd.chunk_s, t_end)
         wall_chunk0 = time.perf_counter()
         model = build_exudyn(spec, rs["q"], rs["v"])
-        ok, msg, stats = solve(model, t0, t1, settings)
+        # the step is a function of the chunk's start time only, so a resumed run repeats it
+        s_k = settings
+        if cd.smooth_step is not None and t0 >= cd.landing_s - 1e-12 and cd.smooth_step != settings.step:
+            s_k = replace(settings, step=cd.smooth_step,
+                          output_period=max(settings.output_period, cd.smooth_step))
+        ok, msg, stats = solve(model, t0, t1, s_k)
         t, q, v = collect(model)
         qe, ve = final_state(model)
         del model
@@ -431,7 +446,7 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
         else:
             t[-1], q[-1], v[-1] = t1, qe, ve
         max_buffer = max(max_buffer, len(t))
-        keep, fast = keep_mask(t, normal_forces(spec, q, v), cd, settings.output_period)
+        keep, fast = keep_mask(t, normal_forces(spec, q, v), cd, s_k.output_period)
         whirl = _classify_whirl(spec, t, q, v, t1 - t0) if ok and len(t) > 8 else (0, float("nan"))
         t, q, v = t[keep], q[keep], v[keep]
         series = evaluate(spec, t, q, v)  # on the kept samples only; cumulative from the chunk start

@@ -21,8 +21,9 @@ from rotorlanding.results import read_results
 
 ROOT = Path(__file__).resolve().parents[1]
 SCEN = ROOT / "scenarios" / "coastdown_7000rpm.toml"
-# short: 6 chunks of 0.05 s (the drop, first impacts and the race spin-up), ~1 s wall each run
-SHORT = ["operating.t_end=0.3", "coastdown.chunk_s=0.05", "coastdown.decimate_every=10"]
+# short: 6 chunks of 0.05 s (the drop, first impacts and the race spin-up), ~1 s wall each run;
+# from 0.1 s on the chunks use the scenario's smooth_step, so resume crosses the step switch
+SHORT = ["operating.t_end=0.3", "coastdown.chunk_s=0.05", "coastdown.decimate_every=10", "coastdown.landing_s=0.1"]
 
 
 def _run(out, overrides=SHORT, **kw):
@@ -78,7 +79,9 @@ def test_decimation_keeps_impacts_at_full_rate(uninterrupted):
     # fewer samples than the full rate, and smooth stretches at decimate_every x period
     assert summary["performance"]["samples_stored"] < summary["performance"]["samples_full_rate"]
     assert np.any(np.isclose(dt, 10 * period, rtol=1e-6))
-    assert np.max(dt) <= 10 * period * (1 + 1e-6)
+    # smooth chunks after landing_s output at max(period, smooth_step), thinned 10x
+    _, cd = load_coastdown(SCEN, SHORT)
+    assert np.max(dt) <= 10 * max(period, cd.smooth_step) * (1 + 1e-6)
 
 
 def test_buffer_bounded_by_chunk_not_run_length(tmp_path, uninterrupted):
@@ -135,12 +138,29 @@ def test_resume_refuses_a_different_scenario(tmp_path):
     ("coastdown.decimate_every=0", "coastdown.decimate_every", "integer >= 1"),
     ("coastdown.fast_force_rate_n_s=-1", "coastdown.fast_force_rate_n_s", "must be > 0"),
     ("coastdown.speed=3", "--set coastdown.speed", "unknown field"),
+    ("coastdown.smooth_step=1e-5", "coastdown.smooth_step", "must lie in"),
+    ("coastdown.smooth_step=3e-4", "coastdown.chunk_s", "whole multiple of coastdown.smooth_step"),
+    ("coastdown.landing_s=-1", "coastdown.landing_s", "must be >= 0"),
 ])
 def test_bad_coastdown_fields(override, field, text):
     with pytest.raises(InputError) as err:
         load_coastdown(SCEN, [override])
     msg = str(err.value)
     assert "\n" not in msg and err.value.field == field and text in msg
+
+
+def test_smooth_phase_uses_the_smooth_step(uninterrupted):
+    _, _, infos = uninterrupted
+    with h5py.File(uninterrupted[0] / "results.h5", "r") as h5:
+        steps = h5["coastdown/chunks/steps"][()]
+        t0 = h5["coastdown/chunks/t_start_s"][()]
+    sc, cd = load_coastdown(SCEN, SHORT)
+    assert cd.smooth_step > sc.solver.step
+    assert any(t0 < cd.landing_s) and any(t0 >= cd.landing_s)
+    for start, n in zip(t0, steps):
+        # Exudyn counts one step more than the chunk's n; halved steps after a failed Newton add a few
+        h = sc.solver.step if start < cd.landing_s - 1e-12 else cd.smooth_step
+        assert round(0.05 / h) <= n < 1.5 * round(0.05 / h)
 
 
 def test_drive_must_coast():
