@@ -417,7 +417,11 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
         store.truncate()
     # the file is open only while a chunk is read or committed: a kill during a solve (nearly all
     # of the wall time) leaves a closed, consistent file, and other programs can read it meanwhile
+    # wall time of a chunk runs from reading its restart record to closing the file after its
+    # commit; the close happens after the commit, so it is carried into the next chunk's record
+    carry_s = 0.0
     while True:
+        wall_chunk0 = time.perf_counter()
         with Store(path, "r") as store:
             rs = store.restart()  # every chunk starts from what is committed in the file
         k = int(rs["chunks"])
@@ -427,7 +431,6 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
         if t_first is None:
             t_first = t0
         t1 = min((k + 1) * cd.chunk_s, t_end)
-        wall_chunk0 = time.perf_counter()
         model = build_exudyn(spec, rs["q"], rs["v"])
         # the step is a function of the chunk's start time only, so a resumed run repeats it
         s_k = settings
@@ -487,13 +490,14 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
                 r["q"][...] = q[-1]
                 r["v"][...] = v[-1]
                 r.attrs.update(t_s=t1, chunks=k + 1, n_rows=store.rows["time_s"].shape[0],
-                               wall_s=float(r.attrs["wall_s"]) + (time.perf_counter() - wall_chunk0),
+                               wall_s=float(r.attrs["wall_s"]) + carry_s + (time.perf_counter() - wall_chunk0),
                                solver_wall_s=float(r.attrs["solver_wall_s"]) + stats["wall_s"],
                                steps=int(r.attrs["steps"]) + stats["steps"],
                                newton_iterations=int(r.attrs["newton_iterations"]) + stats["newton_iterations"],
                                jacobians=int(r.attrs["jacobians"]) + stats["jacobians"], stop_reason=reason,
                                peak_rss_mb=max(float(r.attrs.get("peak_rss_mb", 0.0)), _maxrss_mb()))
             done = bool(r.attrs["stop_reason"])
+            t_commit = time.perf_counter()
         now = time.perf_counter()
         if stream and (now - last_print > 2.0 or done):
             last_print = now
@@ -505,6 +509,7 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
         if on_chunk is not None:
             on_chunk({"chunk": k, "t_s": float(t[-1]), "rotor_speed_rpm": speed_now, "ok": ok,
                       "buffer_samples": len(keep), "max_buffer_samples": max_buffer})
+        carry_s = time.perf_counter() - t_commit
     summary = finish(path, spec, scenario, cd, plots=plots)
     summary["performance"]["max_buffer_samples_this_process"] = max_buffer
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
