@@ -25,8 +25,8 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["full_spectrum", "WhirlResult", "whirl_analysis", "MIN_DIRECTIONALITY",
-           "SPIN_TOLERANCE"]
+__all__ = ["full_spectrum", "WhirlResult", "whirl_analysis", "default_window_s", "MIN_DIRECTIONALITY",
+           "SPIN_TOLERANCE", "MIN_WINDOW_S", "WINDOW_SPIN_PERIODS"]
 
 #: A window only counts as whirling if its dominant component is at least this many times larger
 #: than the component at the mirrored frequency ``-f``.  A planar (straight-line) oscillation, e.g.
@@ -297,7 +297,24 @@ def _spin_series(spin_hz, n: int):
     return np.broadcast_to(arr, (n,)).astype(float)
 
 
-def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=0.05, step_s=None,
+#: Shortest analysis window [s] of the default (automatic) window length.
+MIN_WINDOW_S = 0.05
+#: The automatic window holds at least this many spin periods, so that its bin width is at most
+#: 1/5 of the spin frequency: a sub-synchronous whirl at ~0.9 x spin is then a separate peak, not
+#: merged into the skipped synchronous band (with 0.05 s at 3000 rpm a bin is 20 Hz = 0.4 x spin).
+WINDOW_SPIN_PERIODS = 5.0
+
+
+def default_window_s(spin_hz=None) -> float:
+    """Automatic window length [s]: ``max(MIN_WINDOW_S, WINDOW_SPIN_PERIODS / spin)`` with the
+    median spin [Hz] of the record (``MIN_WINDOW_S`` without a spin speed)."""
+    if spin_hz is None:
+        return MIN_WINDOW_S
+    f = float(np.median(np.asarray(spin_hz, dtype=float)))
+    return max(MIN_WINDOW_S, WINDOW_SPIN_PERIODS / f) if np.isfinite(f) and f > 0 else MIN_WINDOW_S
+
+
+def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=None,
                    amplitude_threshold=0.3, min_duration_s=0.1, t_start=None) -> WhirlResult:
     """Detect sustained whirl in an orbit ``w = y + i z`` by sliding-window full spectra.
 
@@ -335,8 +352,10 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=0.05, step_s=No
     spin_hz : float, array_like or None
         Spin speed [Hz] (> 0), either constant or one value per sample (decelerating rotor);
         its forward synchronous component is not whirl.  None: nothing is skipped.
-    window_s : float
-        Window length [s], > 0, shorter than the analysed record, at least 8 samples.
+    window_s : float or None
+        Window length [s], > 0, shorter than the analysed record, at least 8 samples.  None
+        (default): :func:`default_window_s` of the analysed record's spin (0.05 s from 6000 rpm
+        up, 5 spin periods below), capped at half the analysed record.
     step_s : float or None
         Window advance [s], 0 < step_s <= window_s; default ``window_s / 4``.
     amplitude_threshold : float
@@ -353,7 +372,9 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=0.05, step_s=No
     t_, w, dt = _as_series(t, y, z)
     n_all = len(w)
     clearance = _positive("clearance", clearance)
-    window_s = _positive("window_s", window_s)
+    auto_window = window_s is None
+    if not auto_window:
+        window_s = _positive("window_s", window_s)
     amplitude_threshold = _positive("amplitude_threshold", amplitude_threshold)
     min_duration_s = _positive("min_duration_s", min_duration_s, allow_zero=True)
     spin = _spin_series(spin_hz, n_all)
@@ -370,6 +391,8 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=0.05, step_s=No
                              f"must be None or within the record [{t_[0]:.6g}, {t_[-1]:.6g}] s")
         i0 = int(max(0, np.ceil((ts - t_[0]) / dt - 1e-6)))
     record_s = (n_all - i0) * dt
+    if auto_window:
+        window_s = min(default_window_s(None if spin is None else spin[i0:]), max(MIN_WINDOW_S, 0.5 * record_s))
     if window_s >= record_s:
         raise InputError("window_s", window_s,
                          f"must be > 0 and shorter than the analysed record ({record_s:.6g} s)")

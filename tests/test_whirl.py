@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorlanding.whirl import WhirlResult, full_spectrum, whirl_analysis
+from rotorlanding.whirl import WhirlResult, default_window_s, full_spectrum, whirl_analysis
 
 FS = 10_000.0
 C = 2e-4  # radial clearance [m]
@@ -144,6 +144,21 @@ def test_large_synchronous_response_is_skipped_only_when_spin_given():
     w2 = w + C * np.exp(-2j * np.pi * 40.0 * t)
     res = whirl_analysis(t, w2.real, w2.imag, clearance=C, spin_hz=spin)
     assert res.direction == "backward" and res.frequency_hz == pytest.approx(40.0, abs=0.5)
+
+
+def test_default_window_separates_a_subsynchronous_whirl_at_low_speed():
+    # 3000 rpm (50 Hz spin): forward whirl at 0.93 x spin over a synchronous response. A 0.05 s
+    # window has 20 Hz bins, so the whirl falls into the skipped synchronous band and is missed;
+    # the default window holds 5 spin periods (0.1 s, 10 Hz bins) and finds it.
+    spin = 50.0
+    t, y, z = _drop_then_whirl(0.93 * spin, t_on=0.3, duration=1.0)
+    w = y + 1j * z + 0.2 * C * np.exp(2j * np.pi * spin * t)
+    assert default_window_s(spin) == pytest.approx(0.1)
+    assert default_window_s(7000 / 60) == 0.05 and default_window_s(None) == 0.05
+    assert whirl_analysis(t, w.real, w.imag, clearance=C, spin_hz=spin, window_s=0.05).direction == "none"
+    res = whirl_analysis(t, w.real, w.imag, clearance=C, spin_hz=spin)
+    assert res.direction == "forward" and res.frequency_hz == pytest.approx(0.93 * spin, rel=0.01)
+    assert res.onset_s == pytest.approx(0.3, abs=0.03)
 
 
 def test_lowest_detectable_whirl_frequency_is_two_over_window():
