@@ -126,6 +126,25 @@ def rotor_from_dict(data: dict, *, source: str | None = None) -> Rotor:
         raise err.with_file(source) if source else err
 
 
+def disk_from_geometry(outer_diameter: float, inner_diameter: float, thickness: float,
+                       material: Material, path: str = "disk") -> tuple[float, float, float]:
+    """(mass [kg], polar inertia [kg m^2], transverse inertia about a diameter through the centre
+    [kg m^2]) of an annular disk: m = rho pi/4 (D^2 - d^2) t, Ip = m (D^2 + d^2)/8,
+    Id = Ip/2 + m t^2/12."""
+    if inner_diameter >= outer_diameter:
+        raise InputError(f"{path}.inner_diameter", inner_diameter, f"must be < outer_diameter ({outer_diameter})")
+    m = material.density * math.pi / 4.0 * (outer_diameter ** 2 - inner_diameter ** 2) * thickness
+    ip = m * (outer_diameter ** 2 + inner_diameter ** 2) / 8.0
+    return m, ip, ip / 2.0 + m * thickness ** 2 / 12.0
+
+
+def _disk_material(d, materials: dict) -> Material:
+    name = d.string("material")
+    if name not in materials:
+        raise InputError(f"{d.path}.material", name, f"unknown material; defined: {', '.join(materials)}")
+    return materials[name]
+
+
 def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     if "rotor" not in data:
         raise InputError("rotor", None, "missing required table [rotor]")
@@ -167,15 +186,25 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
 
     disks = []
     for d in r.array_of_tables("disks", []):
-        disk = Disk(
-            name=d.string("name", f"disk{len(disks) + 1}"),
-            position=position(d, "position"),
-            mass=d.number("mass", nonnegative=True),
-            polar_inertia=d.number("polar_inertia", nonnegative=True),
-            transverse_inertia=d.number("transverse_inertia", nonnegative=True),
-        )
+        name = d.string("name", f"disk{len(disks) + 1}")
+        x = position(d, "position")
+        if d.has("outer_diameter") or d.has("thickness"):
+            # a solid-of-revolution disk given by its geometry (a plain steel disk, a thrust or
+            # actuator disk): mass and inertias follow from the annulus
+            for key in ("mass", "polar_inertia", "transverse_inertia"):
+                if d.has(key):
+                    raise InputError(f"{d.path}.{key}", d.raw(key),
+                                     "give either mass and inertias or outer_diameter/thickness/material, not both")
+            mass, ip, it = disk_from_geometry(d.number("outer_diameter", positive=True),
+                                              d.number("inner_diameter", 0.0, nonnegative=True),
+                                              d.number("thickness", positive=True),
+                                              _disk_material(d, materials), d.path)
+        else:
+            mass = d.number("mass", nonnegative=True)
+            ip = d.number("polar_inertia", nonnegative=True)
+            it = d.number("transverse_inertia", nonnegative=True)
         d.finish()
-        disks.append(disk)
+        disks.append(Disk(name=name, position=x, mass=mass, polar_inertia=ip, transverse_inertia=it))
 
     def station_name(t: _Table, key: str) -> str:
         st = t.string(key)

@@ -5,6 +5,7 @@ import pytest
 
 from rotorlanding.modal import modal_analysis
 from rotorlanding.reduction import full_model
+from rotorlanding.errors import InputError
 from rotorlanding.rotor import rotor_from_dict
 from rotorlanding.timoshenko import assemble, cowper_shear_coefficient, element_matrices, plane_matrices
 
@@ -74,6 +75,27 @@ def test_assembled_gyroscopic_is_skew_and_total_mass():
     # disk sits on a node and carries G[alpha, beta] = +Ip
     k = fe.disk_nodes["d"]
     assert fe.nodes[k] == pytest.approx(0.65)
+
+
+def test_disk_given_by_geometry_equals_the_annulus_closed_form():
+    base = {"materials": {"s": STEEL},
+            "sections": [{"length": 0.5, "outer_diameter": 0.06, "material": "s", "elements": 2}]}
+    rotor = rotor_from_dict({"rotor": dict(base, disks=[
+        {"name": "a", "position": 0.0, "outer_diameter": 0.4, "inner_diameter": 0.06, "thickness": 0.05,
+         "material": "s"}])})
+    d = rotor.disks[0]
+    m = 7850 * np.pi / 4 * (0.4**2 - 0.06**2) * 0.05  # rho V
+    # Ip = integral of r^2 dm over the annulus; Id = Ip/2 + m t^2/12 (thin-disk + thickness term)
+    r_o, r_i = 0.2, 0.03
+    ip = 7850 * 0.05 * np.pi / 2 * (r_o**4 - r_i**4)
+    assert (d.mass, d.polar_inertia) == (pytest.approx(m, rel=1e-12), pytest.approx(ip, rel=1e-12))
+    assert d.transverse_inertia == pytest.approx(ip / 2 + m * 0.05**2 / 12, rel=1e-12)
+    for extra, field in (({"mass": 3.0}, "disks[0].mass"), ({"material": "x"}, "disks[0].material"),
+                         ({"inner_diameter": 0.5}, "disks[0].inner_diameter")):
+        disk = {"position": 0.0, "outer_diameter": 0.4, "thickness": 0.05, "material": "s"}
+        disk.update(extra)
+        with pytest.raises(InputError, match=field.replace("[", r"\[").replace("]", r"\]")):
+            rotor_from_dict({"rotor": dict(base, disks=[disk])})
 
 
 def test_cowper_coefficient_solid_and_thin_tube():
