@@ -186,7 +186,7 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
 
     disks = []
     for d in r.array_of_tables("disks", []):
-        name = d.string("name", f"disk{len(disks) + 1}")
+        disk_name = d.string("name", f"disk{len(disks) + 1}")
         x = position(d, "position")
         if d.has("outer_diameter") or d.has("thickness"):
             # a solid-of-revolution disk given by its geometry (a plain steel disk, a thrust or
@@ -204,7 +204,7 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
             ip = d.number("polar_inertia", nonnegative=True)
             it = d.number("transverse_inertia", nonnegative=True)
         d.finish()
-        disks.append(Disk(name=name, position=x, mass=mass, polar_inertia=ip, transverse_inertia=it))
+        disks.append(Disk(name=disk_name, position=x, mass=mass, polar_inertia=ip, transverse_inertia=it))
 
     def station_name(t: _Table, key: str) -> str:
         st = t.string(key)

@@ -84,6 +84,7 @@ def test_disk_given_by_geometry_equals_the_annulus_closed_form():
         {"name": "a", "position": 0.0, "outer_diameter": 0.4, "inner_diameter": 0.06, "thickness": 0.05,
          "material": "s"}])})
     d = rotor.disks[0]
+    assert rotor.name == "rotor" and d.name == "a"
     m = 7850 * np.pi / 4 * (0.4**2 - 0.06**2) * 0.05  # rho V
     # Ip = integral of r^2 dm over the annulus; Id = Ip/2 + m t^2/12 (thin-disk + thickness term)
     r_o, r_i = 0.2, 0.03
