@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -186,7 +187,9 @@ def cmd_validate(args) -> int:
 
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
-    res = validate(args.out, quick=args.quick, workers=args.workers)
+    if args.rig is not None and not Path(args.rig).is_file():
+        raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
+    res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig)
     ev = res["evaluation"]
     for c in ev["checks"]:
         print(f"{'PASS' if c['pass'] else 'FAIL'}  {c['check']}: {c.get('ours')}  ({c['rule']})")
@@ -305,6 +308,16 @@ def cmd_calibrate(args) -> int:
     return 0
 
 
+def cmd_fit_modes(args) -> int:
+    import sys
+
+    from .modefit import fit_modes
+
+    fit_modes(args.space, args.out, stream=sys.stdout)
+    print(f"written: {args.out}/modefit.json")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -347,6 +360,9 @@ def build_parser() -> argparse.ArgumentParser:
     va.add_argument("--out", default="validation", help="output folder (default ./validation)")
     va.add_argument("--quick", action="store_true", help="0.5 s runs (no docs/validation.md update)")
     va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
+    va.add_argument("--rig", default=None, help="rotor/rig TOML merged on top of every paper scenario "
+                                                "(e.g. scenarios/rig_rotor_fitted.toml); report to "
+                                                "docs/validation_<stem>.md")
     va.set_defaults(func=cmd_validate)
 
     an = sub.add_parser("animate", help="render a results.h5 offline with Exudyn's raytracer into a GIF")
@@ -384,6 +400,12 @@ def build_parser() -> argparse.ArgumentParser:
     ca.add_argument("--out", default="calibration")
     ca.add_argument("--workers", type=int, default=2)
     ca.set_defaults(func=cmd_calibrate)
+
+    fm = sub.add_parser("fit-modes", help="fit rotor geometry so that a landed mode matches measured whirl "
+                                          "frequencies at several speeds (deterministic, re-runnable)")
+    fm.add_argument("space", help="space TOML: rotor, support_stiffness, lock_ratio, [targets], [ranges]")
+    fm.add_argument("--out", default="modefit")
+    fm.set_defaults(func=cmd_fit_modes)
 
     r = sub.add_parser("reduce", help="Craig-Bampton reduction error: full vs reduced frequencies")
     r.add_argument("file")

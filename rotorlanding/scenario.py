@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .config import Table, load_toml, parse_value, set_dotted
+from .config import Table, load_toml, parse_value, set_dotted, deep_merge
 from .errors import InputError
 from .rotor import Rotor, rotor_from_dict
 
@@ -299,11 +299,14 @@ def _scenario(data: dict, source, name) -> Scenario:
                     raw=data, source=source)
 
 
-def load_scenario(path, overrides: list[str] | None = None) -> Scenario:
-    """Read a scenario file, apply ``--set key=value`` overrides, validate."""
+def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scenario:
+    """Read a scenario file, merge ``overlays`` (files, e.g. another rig rotor) on top, apply
+    ``--set key=value`` overrides, validate."""
     path = Path(path)
     try:
         data = load_toml(path)
+        for extra in overlays:
+            data = deep_merge(data, load_toml(Path(extra)))
     except InputError as err:
         raise err.with_file(str(path)) from None
     for item in overrides or []:

@@ -40,12 +40,12 @@ QUICK_T_END = 0.5
 
 
 def _run_case(args):
-    key, fname, sets, out_dir, t_end = args
+    key, fname, sets, out_dir, t_end, rig = args
     from .run import run_scenario
     from .scenario import load_scenario
 
     overrides = list(sets) + ([f"operating.t_end={t_end}"] if t_end else [])
-    sc = load_scenario(PAPER_DIR / fname, overrides)
+    sc = load_scenario(PAPER_DIR / fname, overrides, overlays=[rig] if rig else ())
     summary = run_scenario(sc, Path(out_dir) / key, progress=False, plots=True)
     return key, summary
 
@@ -227,13 +227,16 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     return files
 
 
-def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = True) -> dict:
+def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = True, rig=None) -> dict:
+    """Run the paper landings; ``rig``: a rotor (or rig) file merged on top of every paper scenario
+    (its report goes to ``docs/validation_<file stem>.md``)."""
     from . import __version__
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t_end = QUICK_T_END if quick else None
-    jobs = [(k, f, sets, str(out), t_end) for k, (f, sets) in CASES.items()]
+    rig = str(Path(rig).resolve()) if rig else None
+    jobs = [(k, f, sets, str(out), t_end, rig) for k, (f, sets) in CASES.items()]
     import os
     import platform
     import time
@@ -244,7 +247,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
             summaries = dict(ex.map(_run_case, jobs))
     else:
         summaries = dict(map(_run_case, jobs))
-    result = {"version": __version__, "quick": quick,
+    result = {"version": __version__, "quick": quick, "rig_overlay": rig,
               "t_end_note": f"{QUICK_T_END} s each (--quick)" if quick else "full length (scenario t_end)",
               "paper": PAPER, "cases": summaries,
               "run": {"wall_s": round(time.perf_counter() - wall0, 1), "workers": workers,
@@ -257,6 +260,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
     md = report_markdown(result)
     (out / "validation.md").write_text(md)
     if docs and not quick:
-        (ROOT / "docs" / "validation.md").write_text(md)
+        name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
+        (ROOT / "docs" / name).write_text(md)
     return result
 

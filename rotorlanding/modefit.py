@@ -1,0 +1,200 @@
+"""Re-runnable fit of rotor geometry to whirl frequencies measured at several speeds
+(``rotorlanding fit-modes SPACE.toml``).
+
+Why this exists: in our landing model a sustained whirl does not run at a kinematic rolling
+frequency but locks onto a natural mode of the landed rotor (sleeves on the series stiffness of
+Hertz contact, balls and ribbon), a few per cent below it (``docs/calibration.md``). Fitting that
+mode is the cheap first step of reproducing measured whirl frequencies: a linear modal fit takes
+minutes, a landing search hours.
+
+A space file::
+
+    rotor = "../rig_rotor.toml"        # rotor (or scenario) file whose keys are fitted
+    support_stiffness = 3.6e7          # N/m at every [[rotor.supports]] (the landed state)
+    lock_ratio = 0.975                 # landing whirl frequency / mode frequency (measured)
+    seed = 4
+    popsize = 8                        # scipy differential evolution settings
+    maxiter = 25
+    [targets]
+    speeds_rpm = [3000.0, 7000.0, 10000.0]
+    frequencies_hz = [48.0, 65.0, 77.0]   # measured whirl (here: paper Fig. 39, experimental)
+    direction = "forward"
+    max_mode_to_spin = 0.99            # optional: matched mode <= 0.99 x spin at every speed
+    [ranges]
+    "rotor.sections.3.outer_diameter" = {min = 0.035, max = 0.07}
+
+At each speed the mode of the given whirl direction nearest to ``frequency / lock_ratio`` is
+matched; the objective is the sum of squared relative errors. ``max_mode_to_spin`` (optional)
+adds a steep penalty where the matched mode exceeds that multiple of the spin frequency: a
+forward whirl driven by friction on the axial face can only lock to a mode below the spin (the
+face must slip forward over the whirling contact), so at a low speed the mode has to stay below
+the spin even where the measured whirl, divided by ``lock_ratio``, would put it above. The search (differential
+evolution, fixed seed, serial) is deterministic, and the result is rounded to 4 significant
+digits, so re-running the space file reproduces the values written into the rotor file.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .config import Table, load_toml, parse_value, set_dotted
+from .errors import InputError
+
+
+def load_space(path) -> dict:
+    path = Path(path)
+    data = load_toml(path)
+    try:
+        t = Table(data, "")
+        rotor_file = (path.parent / t.string("rotor")).resolve()
+        if not rotor_file.is_file():
+            raise InputError("rotor", t.raw("rotor"), f"must name an existing rotor file ({rotor_file} not found)")
+        space = {
+            "rotor": rotor_file,
+            "support_stiffness": t.number("support_stiffness", positive=True),
+            "lock_ratio": t.number("lock_ratio", 1.0, positive=True, upper=2.0),
+            "seed": t.integer("seed", 1, minimum=0),
+            "popsize": t.integer("popsize", 8, minimum=2),
+            "maxiter": t.integer("maxiter", 25, minimum=1),
+        }
+        tg = t.table("targets")
+        speeds = tg.raw("speeds_rpm")
+        freqs = tg.raw("frequencies_hz")
+        if not (isinstance(speeds, list) and speeds and all(isinstance(s, (int, float)) and s >= 0 for s in speeds)):
+            raise InputError("targets.speeds_rpm", speeds, "must be a non-empty list of speeds >= 0 rpm")
+        if not (isinstance(freqs, list) and len(freqs) == len(speeds)
+                and all(isinstance(f, (int, float)) and f > 0 for f in freqs)):
+            raise InputError("targets.frequencies_hz", freqs, f"must be a list of {len(speeds)} frequencies > 0 Hz")
+        direction = tg.string("direction", "forward")
+        max_ratio = tg.number("max_mode_to_spin", positive=True) if tg.has("max_mode_to_spin") else math.inf
+        if direction not in ("forward", "backward"):
+            raise InputError("targets.direction", direction, "must be 'forward' or 'backward'")
+        tg.finish()
+        ranges = t.raw("ranges")
+        if not isinstance(ranges, dict) or not ranges:
+            raise InputError("ranges", ranges, "give at least one key = {min, max}")
+        for k, r in ranges.items():
+            if not (isinstance(r, dict) and set(r) == {"min", "max"} and r["min"] < r["max"]):
+                raise InputError(f"ranges.{k}", r, "must be {min = a, max = b} with a < b")
+        t.finish()
+    except InputError as err:
+        raise err.with_file(str(path)) from None
+    rotor_data = load_toml(rotor_file)
+    for k in ranges:
+        try:
+            set_dotted(copy.deepcopy(rotor_data), k, 1.0, must_exist=True)
+        except InputError as err:
+            raise InputError(f"ranges.{k}", ranges[k], f"key not in {rotor_file.name}: {err.allowed}").with_file(
+                str(path)) from None
+    space.update(speeds_rpm=[float(s) for s in speeds], frequencies_hz=[float(f) for f in freqs],
+                 direction=direction, max_mode_to_spin=max_ratio, ranges={k: (float(r["min"]), float(r["max"])) for k, r in ranges.items()})
+    space["rotor_data"] = rotor_data
+    return space
+
+
+def rotor_with(rotor_data: dict, values: dict, support_stiffness: float | None = None) -> dict:
+    """A copy of the rotor file data with ``values`` set (and every support at the stiffness)."""
+    data = copy.deepcopy(rotor_data)
+    for k, v in values.items():
+        set_dotted(data, k, float(v), must_exist=True)
+    if support_stiffness is not None:
+        for s in data["rotor"].get("supports", []):
+            s["kyy"] = s["kzz"] = float(support_stiffness)
+    return data
+
+
+def matched_modes(rotor_data: dict, speeds_rpm, targets_hz, direction: str = "forward") -> list[float]:
+    """At each speed, the frequency [Hz] of the mode of ``direction`` nearest to the target (at
+    standstill, where modes have no whirl sense, the nearest mode)."""
+    from .modal import modal_analysis
+    from .reduction import full_model
+    from .rotor import rotor_from_dict
+    from .timoshenko import assemble
+
+    system = full_model(assemble(rotor_from_dict(rotor_data))).with_supports()
+    out = []
+    for sp, ft in zip(speeds_rpm, targets_hz):
+        fs = [m.frequency_hz for m in modal_analysis(system, sp).modes if m.whirl in (direction, "none")]
+        out.append(min(fs, key=lambda f: abs(f - ft)) if fs else float("nan"))
+    return out
+
+
+def round_sig(x: float, digits: int = 4) -> float:
+    if x == 0 or not math.isfinite(x):
+        return x
+    return float(f"{x:.{digits - 1}e}")
+
+
+def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
+    """Run the fit of a space file; returns (and writes to OUT/modefit.json) the result."""
+    from scipy.optimize import differential_evolution
+
+    sp = load_space(space_path)
+    keys = list(sp["ranges"])
+    targets = np.array(sp["frequencies_hz"]) / sp["lock_ratio"]
+    spin_hz = np.maximum(np.array(sp["speeds_rpm"]) / 60.0, 1e-9)
+
+    def modes_of(x):
+        data = rotor_with(sp["rotor_data"], dict(zip(keys, x)), sp["support_stiffness"])
+        return np.array(matched_modes(data, sp["speeds_rpm"], targets, sp["direction"]))
+
+    def objective(x):
+        try:
+            f = modes_of(x)
+        except (InputError, ValueError, np.linalg.LinAlgError):
+            return 1e3  # a geometry the rotor model rejects
+        if not np.all(np.isfinite(f)):
+            return 1e3
+        excess = np.where(spin_hz > 1e-6, np.maximum(f / (spin_hz * sp["max_mode_to_spin"]) - 1.0, 0.0), 0.0)
+        return float(np.sum(((f - targets) / targets) ** 2) + 100.0 * np.sum(excess))
+
+    from .sweep import limit_blas_threads
+
+    # single-threaded BLAS: faster for these small eigenproblems, and the float results (hence
+    # the search path) do not depend on the machine's thread count
+    restore = limit_blas_threads(1)
+    try:
+        res = differential_evolution(objective, [sp["ranges"][k] for k in keys], seed=sp["seed"],
+                                     popsize=sp["popsize"], maxiter=sp["maxiter"], polish=False, tol=1e-10)
+        best = {k: round_sig(float(v)) for k, v in zip(keys, res.x)}
+        f = modes_of([best[k] for k in keys])
+        final_objective = objective([best[k] for k in keys])
+    finally:
+        restore()
+    result = {
+        "space": str(space_path), "rotor": str(sp["rotor"]), "values": best,
+        "support_stiffness_n_m": sp["support_stiffness"], "lock_ratio": sp["lock_ratio"],
+        "speeds_rpm": sp["speeds_rpm"], "target_whirl_hz": sp["frequencies_hz"],
+        "mode_hz": [float(x) for x in f], "predicted_whirl_hz": [float(x * sp["lock_ratio"]) for x in f],
+        "max_mode_to_spin": sp["max_mode_to_spin"] if math.isfinite(sp["max_mode_to_spin"]) else None,
+        "mode_to_spin": [float(x / s) for x, s in zip(f, spin_hz)],
+        "relative_error": [float(x * sp["lock_ratio"] / t - 1) for x, t in zip(f, sp["frequencies_hz"])],
+        "objective": final_objective, "evaluations": int(res.nfev),
+    }
+    if out_dir is not None:
+        out = Path(out_dir)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "modefit.json").write_text(json.dumps(result, indent=2))
+    if stream is not None:
+        stream.write(format_result(result))
+    return result
+
+
+def format_result(r: dict) -> str:
+    lines = [f"fit of {r['rotor']} ({r['evaluations']} evaluations, objective {r['objective']:.3g})",
+             "values (4 significant digits; paste into the rotor file):"]
+    lines += [f"  {k} = {v!r}" for k, v in r["values"].items()]
+    lines.append(" speed_rpm  mode_hz  predicted_whirl_hz  target_hz  error")
+    for s, m, p, t, e in zip(r["speeds_rpm"], r["mode_hz"], r["predicted_whirl_hz"], r["target_whirl_hz"],
+                             r["relative_error"]):
+        lines.append(f" {s:9.0f} {m:8.2f} {p:19.2f} {t:10.2f} {e:+6.1%}")
+    return "\n".join(lines) + "\n"
+
+
+__all__ = ["load_space", "fit_modes", "matched_modes", "rotor_with", "round_sig", "format_result",
+           "parse_value"]
