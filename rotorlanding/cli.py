@@ -361,7 +361,7 @@ def build_parser() -> argparse.ArgumentParser:
     va.add_argument("--quick", action="store_true", help="0.5 s runs (no docs/validation.md update)")
     va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
     va.add_argument("--rig", default=None, help="rotor/rig TOML merged on top of every paper scenario "
-                                                "(e.g. scenarios/rig_rotor_fitted.toml); report to "
+                                                "(e.g. scenarios/rig_rotor_first.toml); report to "
                                                 "docs/validation_<stem>.md")
     va.set_defaults(func=cmd_validate)
 

@@ -97,12 +97,26 @@ def craig_bampton(fe: RotorFE, stations, n_modes: int, rotations: bool = False) 
         raise InputError("rotor.reduction.modes", n_modes, f"must be <= {len(i)} (interior DOFs of the mesh)")
     K, M = fe.K, fe.M
     kii = K[np.ix_(i, i)]
+    unrestrained = InputError("rotor.reduction.boundary_stations", list(stations),
+                              "boundary DOFs do not restrain the rigid-body motion of the free rotor; "
+                              "use two stations at different positions or boundary_rotations = true")
+    # geometric test: the four rigid-body motions (y, z translations; tilts y = x, dy/dx = beta = 1
+    # and z = x, alpha = -dz/dx = -1) must be fixed by the boundary DOFs. (A failing Cholesky alone
+    # misses it when round-off leaves a tiny positive pivot, as for a rotor with a heavy disk.)
+    x = np.asarray(fe.nodes, dtype=float)
+    x = x - x.mean()
+    rigid = np.zeros((fe.ndof, 4))
+    rigid[0::4, 0] = 1.0
+    rigid[1::4, 1] = 1.0
+    rigid[0::4, 2], rigid[3::4, 2] = x, 1.0
+    rigid[1::4, 3], rigid[2::4, 3] = x, -1.0
+    sv = np.linalg.svd(rigid[b, :] / np.linalg.norm(rigid, axis=0), compute_uv=False)
+    if len(sv) < 4 or sv[-1] < 1e-8 * max(sv[0], 1e-300):
+        raise unrestrained
     try:
         chol = sla.cho_factor(kii)
     except np.linalg.LinAlgError:
-        raise InputError("rotor.reduction.boundary_stations", list(stations),
-                         "boundary DOFs do not restrain the rigid-body motion of the free rotor; "
-                         "use two stations at different positions or boundary_rotations = true") from None
+        raise unrestrained from None
     psi = -sla.cho_solve(chol, K[np.ix_(i, b)])
     if n_modes:
         lam, phi = sla.eigh(kii, M[np.ix_(i, i)], subset_by_index=[0, n_modes - 1])

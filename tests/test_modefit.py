@@ -141,12 +141,12 @@ def test_rig_overlay_replaces_the_rotor_of_a_paper_scenario(tmp_path, capsys):
     from rotorlanding.scenario import load_scenario
 
     paper = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
-    fitted = ROOT / "scenarios" / "rig_rotor_fitted.toml"
+    first = ROOT / "scenarios" / "rig_rotor_first.toml"
     base = load_scenario(paper)
-    sc = load_scenario(paper, overlays=[fitted])
-    assert "actuator_disk" not in [d.name for d in base.rotor.disks]
-    assert "actuator_disk" in [d.name for d in sc.rotor.disks]
-    assert sc.rotor.sections[3].outer_diameter == pytest.approx(0.03993)
+    sc = load_scenario(paper, overlays=[first])
+    assert "actuator_disk" in [d.name for d in base.rotor.disks]
+    assert "actuator_disk" not in [d.name for d in sc.rotor.disks]
+    assert sc.rotor.sections[3].outer_diameter == pytest.approx(0.05)
     # everything else of the scenario stays: thrust, friction, speed
     assert (sc.axial.f_thrust, sc.contact.mu_ax, sc.speed_rpm) == (base.axial.f_thrust, base.contact.mu_ax, base.speed_rpm)
     assert main(["validate", "--out", str(tmp_path / "v"), "--rig", str(tmp_path / "missing.toml")]) == 2
