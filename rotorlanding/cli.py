@@ -309,8 +309,6 @@ def cmd_calibrate(args) -> int:
 
 
 def cmd_fit_modes(args) -> int:
-    import sys
-
     from .modefit import fit_modes
 
     fit_modes(args.space, args.out, stream=sys.stdout)

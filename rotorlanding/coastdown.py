@@ -38,7 +38,6 @@ samples (irregular by design).
 
 from __future__ import annotations
 
-import copy
 import json
 import math
 import resource
@@ -51,7 +50,7 @@ import numpy as np
 
 from .config import Table, load_toml, parse_value, set_dotted
 from .errors import InputError
-from .postprocess import INPUTS, MECHANISMS, energy_summary, evaluate, uniform
+from .postprocess import energy_summary, evaluate, uniform
 from .scenario import Scenario, scenario_from_dict
 
 CUMULATIVE_PREFIXES = ("dissipated_", "input_")

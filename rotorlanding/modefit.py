@@ -28,8 +28,8 @@ matched; the objective is the sum of squared relative errors. ``max_mode_to_spin
 adds a steep penalty where the matched mode exceeds that multiple of the spin frequency: a
 forward whirl driven by friction on the axial face can only lock to a mode below the spin (the
 face must slip forward over the whirling contact), so at a low speed the mode has to stay below
-the spin even where the measured whirl, divided by ``lock_ratio``, would put it above. The search (differential
-evolution, fixed seed, serial) is deterministic, and the result is rounded to 4 significant
+the spin even where the measured whirl, divided by ``lock_ratio``, would put it above.
+The search (differential evolution, fixed seed, serial, single-threaded BLAS) is deterministic, and the result is rounded to 4 significant
 digits, so re-running the space file reproduces the values written into the rotor file.
 """
 
@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml, parse_value, set_dotted
+from .config import Table, load_toml, set_dotted
 from .errors import InputError
 
 
@@ -196,5 +196,4 @@ def format_result(r: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["load_space", "fit_modes", "matched_modes", "rotor_with", "round_sig", "format_result",
-           "parse_value"]
+__all__ = ["load_space", "fit_modes", "matched_modes", "rotor_with", "round_sig", "format_result"]
