@@ -40,7 +40,7 @@ import numpy as np
 
 from .config import Table, load_toml
 from .errors import InputError
-from .validate import PAPER, PAPER_DIR
+from .validate import PAPER, paper_dir
 
 CASES = {"fw3000": "forward_whirl_3000rpm.toml", "fw7000": "forward_whirl_landing.toml",
          "fw10000": "forward_whirl_10000rpm.toml", "bw": "backward_whirl_landing.toml"}
@@ -98,9 +98,9 @@ def _run(job):
     i, case, design, t_end, fixed, step_factor = job
     sets = design_overrides(design, fixed) + [f"operating.t_end={t_end}"]
     try:
-        sc = load_scenario(PAPER_DIR / CASES[case], sets)
+        sc = load_scenario(paper_dir() / CASES[case], sets)
         if step_factor != 1.0:
-            sc = load_scenario(PAPER_DIR / CASES[case], sets + [f"solver.step={sc.solver.step * step_factor!r}"])
+            sc = load_scenario(paper_dir() / CASES[case], sets + [f"solver.step={sc.solver.step * step_factor!r}"])
         spec, t, q, v, info = simulate(sc, progress=False)
         s = summarize(spec, t, evaluate(spec, t, q, v))
         w = s["whirl"]

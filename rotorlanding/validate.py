@@ -16,9 +16,24 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from .errors import InputError
 
-ROOT = Path(__file__).resolve().parents[1]
-PAPER_DIR = ROOT / "scenarios" / "paper"
+
+
+
+def project_root() -> Path:
+    """The rotorlanding checkout whose ``scenarios/paper`` is validated and whose ``docs/`` gets the
+    report: the source tree of this module (editable install, or run from the checkout), else the
+    current directory (a regular install run from the checkout)."""
+    for root in (Path(__file__).resolve().parents[1], Path.cwd()):
+        if (root / "scenarios" / "paper").is_dir():
+            return root
+    raise InputError("scenarios/paper", str(Path.cwd() / "scenarios" / "paper"),
+                     "not found: run this from the rotorlanding checkout (it holds the paper scenarios)")
+
+
+def paper_dir() -> Path:
+    return project_root() / "scenarios" / "paper"
 
 #: values read off the paper (Tables 1-2, Fig. 39); displacements in m, forces in N
 PAPER = {
@@ -48,7 +63,7 @@ def _run_case(args):
     from .scenario import load_scenario
 
     overrides = list(sets) + ([f"operating.t_end={t_end}"] if t_end else [])
-    sc = load_scenario(PAPER_DIR / fname, overrides, overlays=[rig] if rig else ())
+    sc = load_scenario(paper_dir() / fname, overrides, overlays=[rig] if rig else ())
     summary = run_scenario(sc, Path(out_dir) / key, progress=False, plots=True)
     return key, summary
 
@@ -127,7 +142,8 @@ def _fmt(x, scale=1.0, nd=3):
 def _shown(path: str) -> str:
     """A path relative to the project when it lies inside it."""
     p = Path(path)
-    return str(p.relative_to(ROOT)) if p.is_relative_to(ROOT) else path
+    root = project_root()
+    return str(p.relative_to(root)) if p.is_relative_to(root) else path
 
 
 def report_markdown(result: dict) -> str:
@@ -243,6 +259,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
     (its report goes to ``docs/validation_<file stem>.md``)."""
     from . import __version__
 
+    root = project_root()  # before any work: a missing checkout is a one-line error, not a dead worker
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t_end = QUICK_T_END if quick else None
@@ -268,6 +285,6 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
     (out / "validation.md").write_text(md)
     if docs and not quick:
         name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
-        (ROOT / "docs" / name).write_text(md)
+        (root / "docs" / name).write_text(md)
     return result
 

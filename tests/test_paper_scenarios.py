@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from rotorlanding.cli import main
 from rotorlanding.postprocess import evaluate, summarize
 from rotorlanding.run import simulate
 from rotorlanding.scenario import load_scenario
@@ -40,3 +41,19 @@ def test_full_paper_validation(tmp_path):
     res = validate(tmp_path, docs=False)
     failed = [c["check"] for c in res["evaluation"]["checks"] if not c["pass"]]
     assert not failed, failed
+
+
+def test_paper_scenarios_found_from_the_checkout_after_a_regular_install(tmp_path, monkeypatch):
+    # a non-editable install puts the package in site-packages, without scenarios/: validate then
+    # uses the checkout it is run from, and elsewhere says so in one line instead of a dead worker
+    import rotorlanding.validate as v
+    from rotorlanding.errors import InputError
+
+    root = Path(__file__).resolve().parents[1]
+    monkeypatch.setattr(v, "__file__", str(tmp_path / "site-packages" / "rotorlanding" / "validate.py"))
+    monkeypatch.chdir(root)
+    assert v.project_root() == root and v.paper_dir().is_dir()
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(InputError, match="scenarios/paper"):
+        v.project_root()
+    assert main(["validate", "--out", str(tmp_path / "v"), "--quick"]) == 2
