@@ -48,7 +48,7 @@ _axial_rub = _njit(_axial_rub_py)
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
  P_YHP, P_C4COT, P_C5, P_WREG2, P_KRIB, P_CRIB, P_ETA, P_COUL, P_MUD, P_CI, P_CO, P_WI, P_WO, P_FACE, P_RUB,
- P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_SIZE) = range(42)
+ P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_SIZE) = range(43)
 
 
 def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
@@ -67,6 +67,7 @@ def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
     P[P_MU] = c.mu_rad if eff["radial_friction"] else 0.0
     P[P_KB1], P[P_KB2], P[P_CB] = p.k_b1, p.k_b2, p.c_b
     P[P_DRAG] = 1.0 if eff["ball_drag"] else 0.0
+    P[P_TW] = p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0
     P[P_XS:P_WREG2 + 1] = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter,
                                                     p.hp_z, p.hp_y, omega_reg=OMEGA_REG_HP)
     P[P_KRIB], P[P_CRIB] = p.k_rib, p.c_rib
@@ -288,6 +289,8 @@ def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, v
     bz = -k * ez - P[P_CB] * (vrz - voz)
     if P[P_DRAG] != 0.0:
         t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
+    if P[P_TW] != 0.0:
+        t_race -= P[P_TW] * omi / math.sqrt(omi * omi + P[P_WREG2])
     # ribbon
     krib = P[P_KRIB]
     crib = P[P_CRIB]
@@ -468,6 +471,9 @@ def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
         Jv[4 + i, 7 + i] += cb
         Jv[7 + i, 4 + i] += cb
         Jv[7 + i, 7 + i] -= cb
+    if P[P_TW] != 0.0:
+        m2 = omi * omi + P[P_WREG2]
+        Jv[6, 6] -= P[P_TW] * P[P_WREG2] / (m2 * math.sqrt(m2))
     if P[P_DRAG] != 0.0:
         fr = math.sqrt(by * by + bz * bz)
         _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax, P)

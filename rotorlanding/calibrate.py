@@ -7,6 +7,9 @@ A space file lists the unknowns and their ranges (any scenario keys, arrays of t
     seed = 1
     t_end = 0.8           # s per landing
     verify_top = 3        # re-run the best designs at half the step (step-convergence check)
+    cases = ["bw"]        # optional: the landings scored (default all: fw3000, fw7000, fw10000, bw)
+    ensemble = 8          # optional: the backward landing as 8 drops from a 5 um circle, scored on
+                          # the members' majority class and medians (rotorlanding.ensemble)
     [fixed]               # optional: applied to every design (e.g. a solver step for the search)
     "solver.step" = 1e-4
     [ranges]
@@ -55,6 +58,10 @@ def load_space(path) -> dict:
         seed = t.integer("seed", 1, minimum=0)
         t_end = t.number("t_end", 0.8, positive=True)
         verify_top = t.integer("verify_top", 0, minimum=0)
+        cases = t.raw("cases", list(CASES))
+        if not (isinstance(cases, list) and cases and all(c in CASES for c in cases)):
+            raise InputError("cases", cases, f"must be a non-empty list of {', '.join(CASES)}")
+        ensemble = t.integer("ensemble", 1)
         fixed = t.raw("fixed", {})
         if not isinstance(fixed, dict):
             raise InputError("fixed", fixed, "must be a table of scenario keys = values")
@@ -79,7 +86,8 @@ def load_space(path) -> dict:
             else:
                 d[k] = float(rng.uniform(r["min"], r["max"]))
         designs.append(d)
-    return {"designs": designs, "t_end": t_end, "verify_top": verify_top, "fixed": dict(fixed)}
+    return {"designs": designs, "t_end": t_end, "verify_top": verify_top, "fixed": dict(fixed), "cases": cases,
+            "ensemble": ensemble}
 
 
 def design_overrides(design: dict, fixed: dict | None = None) -> list[str]:
@@ -95,12 +103,13 @@ def _run(job):
     from .run import simulate
     from .scenario import load_scenario
 
-    i, case, design, t_end, fixed, step_factor = job
-    sets = design_overrides(design, fixed) + [f"operating.t_end={t_end}"]
+    i, case, design, t_end, fixed, step_factor, extra = job
+    sets = design_overrides(design, fixed) + [f"operating.t_end={t_end}"] + list(extra)
+    fname = CASES[case.split("#")[0]]  # "bw#3": member 3 of the backward-landing ensemble
     try:
-        sc = load_scenario(paper_dir() / CASES[case], sets)
+        sc = load_scenario(paper_dir() / fname, sets)
         if step_factor != 1.0:
-            sc = load_scenario(paper_dir() / CASES[case], sets + [f"solver.step={sc.solver.step * step_factor!r}"])
+            sc = load_scenario(paper_dir() / fname, sets + [f"solver.step={sc.solver.step * step_factor!r}"])
         spec, t, q, v, info = simulate(sc, progress=False)
         s = summarize(spec, t, evaluate(spec, t, q, v))
         w = s["whirl"]
@@ -110,19 +119,23 @@ def _run(job):
         return i, case, {"direction": "failed", "error": str(exc), "ok": False}
 
 
-def score(res: dict) -> tuple[float, dict]:
-    """Sum of relative errors vs the experiments; 1 per wrong whirl class."""
+def score(res: dict, cases=tuple(CASES)) -> tuple[float, dict]:
+    """Sum of relative errors vs the experiments over ``cases``; 1 per wrong whirl class."""
     parts = {}
     for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[PAPER["fig39"][k] for k in
                                                                     ("speed_rpm", "experimental_hz")]):
+        if case not in cases:
+            continue
         r = res.get(case, {})
         parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
     r = res.get("fw7000", {})
-    if r.get("force_max_n"):
+    if "fw7000" in cases and r.get("force_max_n"):
         parts["force"] = min(1.0, abs(r["force_max_n"] / PAPER["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
     b = res.get("bw", {})
     t1 = PAPER["table1"]["experimental"]
-    if b.get("direction") == "backward":
+    if "bw" not in cases:
+        pass
+    elif b.get("direction") == "backward":
         parts["bw_freq"] = abs(b["frequency_hz"] - t1["frequency_hz"]) / t1["frequency_hz"]
         parts["bw_onset"] = min(1.0, abs(b["onset_s"] - t1["onset_s"]) / t1["onset_s"])
     else:
@@ -130,22 +143,46 @@ def score(res: dict) -> tuple[float, dict]:
     return float(sum(parts.values())), parts
 
 
+def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
+    """One job per design and case; the backward case as ``sp['ensemble']`` drops when > 1."""
+    from .ensemble import drop_offsets
+
+    jobs = []
+    for i, d in designs.items():
+        for c in sp["cases"]:
+            if c == "bw" and sp["ensemble"] > 1:
+                jobs += [(i, f"bw#{k}", d, sp["t_end"], sp["fixed"], step_factor, extra)
+                         for k, extra in enumerate(drop_offsets(sp["ensemble"]))]
+            else:
+                jobs.append((i, c, d, sp["t_end"], sp["fixed"], step_factor, []))
+    return jobs
+
+
 def _run_all(jobs, workers):
+    from .ensemble import ensemble_stats
+
     results: dict[int, dict] = {}
     if workers > 1:
         with ProcessPoolExecutor(workers) as ex:
-            it = ex.map(_run, jobs)
-            for i, case, r in it:
-                results.setdefault(i, {})[case] = r
+            it = list(ex.map(_run, jobs))
     else:
-        for i, case, r in map(_run, jobs):
+        it = list(map(_run, jobs))
+    members: dict[int, list] = {}
+    for i, case, r in it:
+        if "#" in case:
+            members.setdefault(i, []).append(r)
+        else:
             results.setdefault(i, {})[case] = r
+    for i, m in members.items():
+        results.setdefault(i, {})["bw"] = ensemble_stats(m)
     return results
 
 
 def converged(a: dict, b: dict) -> bool:
     """Same whirl classes, frequencies within 2 %, forward-case force within 5 % (step h vs h/2)."""
     for c in CASES:
+        if c not in a and c not in b:
+            continue
         ra, rb = a.get(c, {}), b.get(c, {})
         if ra.get("direction") != rb.get("direction") or ra.get("direction") == "failed":
             return False
@@ -160,24 +197,26 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     sp = load_space(space_path)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    jobs = [(i, c, d, sp["t_end"], sp["fixed"], 1.0) for i, d in enumerate(sp["designs"]) for c in CASES]
-    results = _run_all(jobs, workers)
+    cases = sp["cases"]
+    results = _run_all(_jobs(dict(enumerate(sp["designs"])), sp, 1.0), workers)
     rows = []
     for i, d in enumerate(sp["designs"]):
-        total, parts = score(results[i])
+        total, parts = score(results[i], cases)
         rows.append({"design": i, "score": total, "converged": None, "score_half_step": None, **d,
                      **{f"err_{k}": v for k, v in parts.items()},
-                     **{f"{c}_direction": results[i][c].get("direction") for c in CASES},
-                     **{f"{c}_hz": results[i][c].get("frequency_hz") for c in CASES}})
+                     **{f"{c}_direction": results[i][c].get("direction") for c in cases},
+                     **{f"{c}_hz": results[i][c].get("frequency_hz") for c in cases},
+                     **({"bw_onset_s": results[i]["bw"].get("onset_s"),
+                         "bw_fraction": results[i]["bw"].get("fraction")} if sp["ensemble"] > 1 and "bw" in cases
+                        else {})})
     rows.sort(key=lambda r: r["score"])
     top = rows[: sp["verify_top"]]
     if top:
-        half = _run_all([(r["design"], c, sp["designs"][r["design"]], sp["t_end"], sp["fixed"], 0.5)
-                         for r in top for c in CASES], workers)
+        half = _run_all(_jobs({r["design"]: sp["designs"][r["design"]] for r in top}, sp, 0.5), workers)
         for r in top:
             r["converged"] = converged(results[r["design"]], half[r["design"]])
-            r["score_half_step"] = score(half[r["design"]])[0]
-            r.update({f"{c}_hz_half_step": half[r["design"]][c].get("frequency_hz") for c in CASES})
+            r["score_half_step"] = score(half[r["design"]], cases)[0]
+            r.update({f"{c}_hz_half_step": half[r["design"]][c].get("frequency_hz") for c in cases})
         # a converged design outranks an unconverged one; its score is the worse of the two steps
         rows.sort(key=lambda r: (r["converged"] is False, max(r["score"], r["score_half_step"] or 0.0)))
     keys = []

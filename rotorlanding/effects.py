@@ -32,6 +32,11 @@ CATALOGUE = {
     "ball_drag": Effect("ball_drag", "slower inner-race spin-up, race speed stays below the rotor speed; slightly "
                         "faster rotor deceleration while the races slip",
                         (Parameter("hp_z", ("bearings.DE.hp_z", "bearings.NDE.hp_z"), 2e-4, 2e-2, True),)),
+    "worn_bearing_drag": Effect("worn_bearing_drag", "worn catcher bearing: the race slips whenever the landed "
+                                "load dips, and the slip friction feeds a backward whirl of the order of the "
+                                "clearance that starts tenths of a second after the drop",
+                                (Parameter("worn_drag_torque", ("bearings.DE.worn_drag_torque",
+                                                                "bearings.NDE.worn_drag_torque"), 0.1, 5.0, True),)),
     "windage": Effect("windage", "rotor deceleration growing with speed squared, present before and after "
                       "contact; races unaffected", (Parameter("c_w2", ("spin.c_w2",), 1e-8, 2e-6, True),)),
     "ribbon_cross_coupling": Effect("ribbon_cross_coupling", "hysteretic damping of orbiting motion: smaller "

@@ -26,7 +26,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub as _axial_rub_py
-from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast
+from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -224,6 +224,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     mu = c.mu_rad if eff["radial_friction"] else 0.0
     kb1, kb2, cb = p.k_b1, p.k_b2, p.c_b
     drag = eff["ball_drag"]
+    worn = p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0
     hp = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter, p.hp_z, p.hp_y,
                                    omega_reg=OMEGA_REG_HP)
     krib, crib = p.k_rib, p.c_rib
@@ -258,6 +259,8 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
         by, bz = ball_force(ry - oy, rz - oz, kb1, kb2, vry - voy, vrz - voz, cb)
         if drag:
             t_race += harris_palmgren_fast(omega_i, math.hypot(by, bz), f_ax, hp)
+        if worn:
+            t_race += worn_drag_torque(omega_i, worn, OMEGA_REG_HP)
         hy, hz = ribbon_force(oy, oz, voy, voz, krib, crib, eta, v_reg)
         if coulomb and f_ax > 0.0:
             ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)

@@ -111,6 +111,10 @@ class LandingSpec:
         if self.n_lat > nb:
             km = self.K[nb:self.n_lat, nb:self.n_lat]
             q0[nb:self.n_lat] = np.linalg.solve(km, self.f_gravity[nb:self.n_lat])
+        dy, dz = self.scenario.amb.drop_offset_m
+        if dy or dz:  # rigid shift: the Craig-Bampton boundary translations move, the modes do not
+            for i, name in enumerate(self.names[:nb]):
+                q0[i] += dy if name.endswith(".y") else dz if name.endswith(".z") else 0.0
         v0[self.i_theta] = self.scenario.omega0
         return q0, v0
 

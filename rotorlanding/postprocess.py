@@ -28,7 +28,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast
+from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -37,9 +37,9 @@ from .forces import OMEGA_REG_HP
 from .landing import G_ACC, LandingSpec
 from .whirl import whirl_analysis
 
-MECHANISMS = ("radial_friction", "contact_damping", "axial_rub", "ball_damping", "ball_drag", "ribbon_damping",
-              "ribbon_cross_coupling", "outer_race_coulomb", "windage", "axial_damping", "rotor_damping",
-              "race_damping")
+MECHANISMS = ("radial_friction", "contact_damping", "axial_rub", "ball_damping", "ball_drag", "worn_bearing_drag",
+              "ribbon_damping", "ribbon_cross_coupling", "outer_race_coulomb", "windage", "axial_damping",
+              "rotor_damping", "race_damping")
 INPUTS = ("amb", "thrust", "drive", "unbalance")
 
 
@@ -156,6 +156,10 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
                 thp = harris_palmgren_fast(wi, math.hypot(by, bz), n_ax, hp)
                 cols["drag_torque_nm"][k] = thp
                 power["ball_drag"][k] += -thp * wi
+            if eff["worn_bearing_drag"] and p.worn_drag_torque > 0:
+                tw = worn_drag_torque(wi, p.worn_drag_torque, OMEGA_REG_HP)
+                cols["drag_torque_nm"][k] += tw
+                power["worn_bearing_drag"][k] += -tw * wi
             oy, oz, ovy, ovz = qk[o], qk[o + 1], vk[o], vk[o + 1]
             gy, gz = ribbon_force(oy, oz, ovy, ovz, p.k_rib, p.c_rib, eta, c.v_reg)
             cols["ribbon_force_y_n"][k], cols["ribbon_force_z_n"][k] = gy, gz

@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -102,6 +102,8 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
             f[r + 2] += harris_palmgren_torque(wr, math.hypot(by, bz), n_ax, contact_angle_deg=p.contact_angle_deg,
                                                C_s=p.static_load_rating, d_m=p.pitch_diameter, z_hp=p.hp_z,
                                                y_hp=p.hp_y, omega_reg=0.1)
+        if eff["worn_bearing_drag"]:
+            f[r + 2] += worn_drag_torque(wr, p.worn_drag_torque, 0.1)
         hy, hz = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], p.k_rib, p.c_rib,
                               p.eta if eff["ribbon_cross_coupling"] else 0.0, c.v_reg)
         f[o] += hy

@@ -38,6 +38,7 @@ EFFECTS = {
     "ribbon_cross_coupling": True,   # sign-switching cross-coupled ribbon stiffness (eq 28-29)
     "outer_race_coulomb": True,      # outer race / housing Coulomb friction from axial load (eq 30)
     "windage": True,                 # aerodynamic drag torque on the rotor (eq 6)
+    "worn_bearing_drag": False,      # load-independent drag torque of a worn catcher bearing (not in the paper)
     "unbalance": False,              # rotating unbalance force from [unbalance]
     "rotor_flexibility": True,       # keep the fixed-interface modes (false: rigid-rotor model)
 }
@@ -64,6 +65,7 @@ class Bearing:
     pitch_diameter: float       # m, d_m
     hp_z: float                 # Harris-Palmgren z
     hp_y: float                 # Harris-Palmgren exponent y
+    worn_drag_torque: float     # N m, Coulomb drag of a worn bearing (effect worn_bearing_drag)
     k_rib: float                # N/m (eq 28)
     c_rib: float                # N s/m
     eta: float                  # -, ribbon cross-coupling factor (eq 29)
@@ -111,6 +113,7 @@ class Amb:
     t_drop: float       # s
     drop_radial: bool
     drop_axial: bool
+    drop_offset_m: tuple[float, float] = (0.0, 0.0)   # m, (y, z) of the rotor at the drop (AMB position error)
 
 
 @dataclass(frozen=True)
@@ -180,6 +183,7 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         static_load_rating=t.number("static_load_rating", **pos),
         pitch_diameter=t.number("pitch_diameter", **pos),
         hp_z=t.number("hp_z", **nn), hp_y=t.number("hp_y", **nn),
+        worn_drag_torque=t.number("worn_drag_torque", 0.0, **nn),
         k_rib=t.number("k_rib", **pos), c_rib=t.number("c_rib", 0.0, **nn),
         eta=t.number("eta", 0.0, **nn), mu_d=t.number("mu_d", 0.0, **nn),
         axial_face=t.boolean("axial_face", False),
@@ -191,6 +195,19 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
                          f"with axial_face = true need 0 < face_inner_radius ({b.face_inner_radius}) < face_outer_radius")
     t.finish()
     return b
+
+
+def _drop_offset(value, clearance: float) -> tuple[float, float]:
+    """[y, z] of the rotor at the drop [m]: a rigid shift of the levitated rotor (the AMBs' position
+    error; an ensemble of drops from a small circle samples the landing's sensitivity)."""
+    ok = isinstance(value, (list, tuple)) and len(value) == 2 and all(
+        isinstance(x, (int, float)) and not isinstance(x, bool) for x in value)
+    if not ok:
+        raise InputError("amb.drop_offset_m", value, "must be [y, z] in m, e.g. [5e-6, 0.0]")
+    y, z = float(value[0]), float(value[1])
+    if not (y * y + z * z) ** 0.5 < clearance:
+        raise InputError("amb.drop_offset_m", value, f"must lie inside the radial clearance ({clearance:g} m)")
+    return (y, z)
 
 
 def scenario_from_dict(data: dict, *, source: str | None = None, name: str | None = None) -> Scenario:
@@ -243,7 +260,8 @@ def _scenario(data: dict, source, name) -> Scenario:
     m = top.table("amb")
     amb = Amb(m.number("stiffness", positive=True), m.number("damping", 0.0, nonnegative=True),
               m.number("axial_stiffness", positive=True), m.number("axial_damping", 0.0, nonnegative=True),
-              m.number("t_drop", 0.0, nonnegative=True), m.boolean("drop_radial", True), m.boolean("drop_axial", False))
+              m.number("t_drop", 0.0, nonnegative=True), m.boolean("drop_radial", True), m.boolean("drop_axial", False),
+              _drop_offset(m.raw("drop_offset_m", [0.0, 0.0]), min(b.clearance for b in bearings.values())))
     m.finish()
 
     s = top.table("spin", {})
@@ -272,6 +290,9 @@ def _scenario(data: dict, source, name) -> Scenario:
         u.finish()
     elif effects["unbalance"]:
         raise InputError("effects.unbalance", True, "needs an [unbalance] table (station, magnitude)")
+    if effects["worn_bearing_drag"] and not any(b.worn_drag_torque > 0 for b in bearings.values()):
+        raise InputError("effects.worn_bearing_drag", True,
+                         "needs bearings.DE.worn_drag_torque and/or bearings.NDE.worn_drag_torque > 0 [N m]")
 
     o = top.table("operating")
     speed = o.number("speed_rpm", nonnegative=True)

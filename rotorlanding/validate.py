@@ -55,17 +55,38 @@ CASES = {
     "forward_7000_no_axial_rub": ("forward_whirl_landing.toml", ["effects.axial_rub=false"]),
 }
 QUICK_T_END = 0.5
+#: cases judged on an ensemble of drops from a 5 um circle (rotorlanding.ensemble): the worn-bearing
+#: backward whirl is a chaotic rattle whose class and onset hang on round-off for a centred drop
+ENSEMBLE = {"backward_whirl": 8}
 
 
 def _run_case(args):
-    key, fname, sets, out_dir, t_end, rig = args
+    key, fname, sets, out_dir, t_end, rig, plots = args
     from .run import run_scenario
     from .scenario import load_scenario
 
     overrides = list(sets) + ([f"operating.t_end={t_end}"] if t_end else [])
     sc = load_scenario(paper_dir() / fname, overrides, overlays=[rig] if rig else ())
-    summary = run_scenario(sc, Path(out_dir) / key, progress=False, plots=True)
+    summary = run_scenario(sc, Path(out_dir) / key, progress=False, plots=plots)
     return key, summary
+
+
+def _member(summary: dict) -> dict:
+    """The numbers of one ensemble member that the statistics use."""
+    w, de = summary["whirl"], summary["bearings"]["DE"]
+    return {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
+            "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"]}
+
+
+def _ensemble_jobs(out: Path, t_end, rig) -> list[tuple]:
+    from .ensemble import drop_offsets
+
+    jobs = []
+    for key, n in ENSEMBLE.items():
+        fname, sets = CASES[key]
+        for k, extra in enumerate(drop_offsets(n)):
+            jobs.append((f"{key}_drop{k}", fname, list(sets) + extra, str(out / "ensembles"), t_end, rig, False))
+    return jobs
 
 
 def _rel(ours, ref):
@@ -77,8 +98,9 @@ def _order(ours, ref):
     return ours is not None and ours * ref > 0 and 0.5 <= ours / ref <= 2.0
 
 
-def evaluate_cases(s: dict) -> dict:
-    """Acceptance checks (the issue's list) from the case summaries."""
+def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
+    """Acceptance checks (the issue's list) from the case summaries; a case listed in ``ensembles``
+    (``rotorlanding.ensemble.ensemble_stats`` of its members) is judged on the ensemble."""
     checks = []
 
     def check(name, rule, ok, **values):
@@ -94,15 +116,24 @@ def evaluate_cases(s: dict) -> dict:
 
     bw = s["backward_whirl"]
     t1 = PAPER["table1"]["experimental"]
-    w = bw["whirl"]
-    check("backward: direction", "whirl direction == backward", w["direction"] == "backward", ours=w["direction"])
-    f_err = _rel(w["frequency_hz"], t1["frequency_hz"])
+    ens = (ensembles or {}).get("backward_whirl")
+    if ens:
+        w = ens
+        b = ens["v_disp_range_m"]
+        rule_dir = (f"most of the {ens['n']} drops from a 5 um circle whirl backward; "
+                    "frequency, onset, ranges: member medians")
+    else:
+        w = bw["whirl"]
+        b = bw["bearings"]["DE"]["vertical_displacement_range_m"]
+        rule_dir = "whirl direction == backward"
+    check("backward: direction", rule_dir, w["direction"] == "backward",
+          ours=w["direction"] if not ens else f"{w['direction']} ({round(100 * w['fraction'])} % of {w['n']})")
+    f_err = _rel(w["frequency_hz"], t1["frequency_hz"]) if w["direction"] == "backward" else None
     check("backward: frequency", "within 10 % of 49 Hz", f_err is not None and abs(f_err) <= 0.10,
           ours=w["frequency_hz"], paper_experimental=t1["frequency_hz"], paper_simulated=51.0, relative_error=f_err)
-    onset = w["onset_s"]
+    onset = w["onset_s"] if w["direction"] == "backward" else None
     check("backward: onset", "0.4 +/- 0.15 s", onset is not None and abs(onset - 0.4) <= 0.15, ours=onset,
           paper_experimental=0.4)
-    b = bw["bearings"]["DE"]["vertical_displacement_range_m"]
     check("backward: vertical displacement range", "same order as 0.2 / -0.4 mm (factor 2)",
           _order(b[1], t1["v_disp_max_m"]) and _order(b[0], t1["v_disp_min_m"]), ours=b,
           paper_experimental=[t1["v_disp_min_m"], t1["v_disp_max_m"]])
@@ -161,17 +192,38 @@ def report_markdown(result: dict) -> str:
              "| quantity | paper simulated | paper experimental | ours | relative error vs experiment |",
              "|---|---|---|---|---|"]
     t1s, t1e = PAPER["table1"]["simulated"], PAPER["table1"]["experimental"]
-    bw = s["backward_whirl"]
-    vr = bw["bearings"]["DE"]["vertical_displacement_range_m"]
+    ens = result.get("ensembles", {}).get("backward_whirl")
+    if ens:
+        bwd = {"direction": ens["direction"], "frequency_hz": ens["frequency_hz"], "onset_s": ens["onset_s"]}
+        vr = ens["v_disp_range_m"]
+    else:
+        bwd = s["backward_whirl"]["whirl"]
+        vr = s["backward_whirl"]["bearings"]["DE"]["vertical_displacement_range_m"]
     rows = [("DE vertical displacement max [mm]", t1s["v_disp_max_m"] * 1e3, t1e["v_disp_max_m"] * 1e3, vr[1] * 1e3),
             ("DE vertical displacement min [mm]", t1s["v_disp_min_m"] * 1e3, t1e["v_disp_min_m"] * 1e3, vr[0] * 1e3),
-            ("whirl onset [s]", t1s["onset_s"], t1e["onset_s"], bw["whirl"]["onset_s"]),
+            ("whirl onset [s]", t1s["onset_s"], t1e["onset_s"], bwd["onset_s"] if bwd["direction"] == "backward" else None),
             ("backward whirl frequency [Hz]", t1s["frequency_hz"], t1e["frequency_hz"],
-             bw["whirl"]["frequency_hz"] if bw["whirl"]["direction"] == "backward" else None)]
+             bwd["frequency_hz"] if bwd["direction"] == "backward" else None)]
     for name, ps, pe, ours in rows:
         err = _rel(ours, pe)
         lines.append(f"| {name} | {_fmt(ps)} | {_fmt(pe)} | {_fmt(ours)} | {_fmt(err, 100, 3) + ' %' if err is not None else '-'} |")
-    lines += ["", f"Our whirl direction: **{bw['whirl']['direction']}**.", "",
+    lines += [""]
+    if ens:
+        lines += [f"Ours: medians over {ens['n']} drops from points of a 5 um circle (AMB position error; "
+                  f"`rotorlanding/ensemble.py`): **{ens['direction']}** in {round(100 * ens['fraction'])} % of them "
+                  f"({', '.join(f'{k} {v}' for k, v in ens['counts'].items())}). The centred drop "
+                  f"(`backward_whirl/`, figures): {s['backward_whirl']['whirl']['direction']}"
+                  + (f" at {s['backward_whirl']['whirl']['frequency_hz']:.1f} Hz"
+                     if s['backward_whirl']['whirl']['frequency_hz'] else "") + ".", "",
+                  "| drop | direction | frequency [Hz] | onset [s] | DE vertical displacement [mm] | "
+                  "DE vertical force [kN] |", "|---|---|---|---|---|---|"]
+        for k, m in enumerate(ens["members"]):
+            lines.append(f"| {k} | {m['direction']} | {_fmt(m['frequency_hz'])} | {_fmt(m['onset_s'])} | "
+                         f"{_fmt(m['v_disp_range_m'], 1e3)} | {_fmt(m['v_force_range_n'], 1e-3)} |")
+        lines.append("")
+    else:
+        lines += [f"Our whirl direction: **{s['backward_whirl']['whirl']['direction']}**.", ""]
+    lines += [
               "## Table 2 and Fig. 39: forward-whirl combined landing (mu_rad 0.15, mu_ax 0.3, 4 kN thrust)", "",
               "| quantity | paper simulated | paper experimental | ours | relative error vs experiment |",
               "|---|---|---|---|---|"]
@@ -264,21 +316,26 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
     out.mkdir(parents=True, exist_ok=True)
     t_end = QUICK_T_END if quick else None
     rig = str(Path(rig).resolve()) if rig else None
-    jobs = [(k, f, sets, str(out), t_end, rig) for k, (f, sets) in CASES.items()]
+    from .ensemble import ensemble_stats
+
+    jobs = [(k, f, sets, str(out), t_end, rig, True) for k, (f, sets) in CASES.items()]
+    jobs += _ensemble_jobs(out, t_end, rig)
     wall0 = time.perf_counter()
     if workers > 1:
         with ProcessPoolExecutor(workers) as ex:
             summaries = dict(ex.map(_run_case, jobs))
     else:
         summaries = dict(map(_run_case, jobs))
+    members = {key: [_member(summaries.pop(f"{key}_drop{k}")) for k in range(n)] for key, n in ENSEMBLE.items()}
+    ensembles = {key: {**ensemble_stats(m), "members": m} for key, m in members.items()}
     result = {"version": __version__, "quick": quick, "rig_overlay": rig,
               "t_end_note": f"{QUICK_T_END} s each (--quick)" if quick else "full length (scenario t_end)",
-              "paper": PAPER, "cases": summaries,
+              "paper": PAPER, "cases": summaries, "ensembles": ensembles,
               "run": {"wall_s": round(time.perf_counter() - wall0, 1), "workers": workers,
                       "cpus": os.cpu_count(), "python": platform.python_version(),
                       "case_wall_s": {k: round(v.get("performance", {}).get("wall_s", float("nan")), 2)
                                       for k, v in summaries.items()}}}
-    result["evaluation"] = evaluate_cases(summaries)
+    result["evaluation"] = evaluate_cases(summaries, ensembles)
     result["figures"] = plot_validation(result, out)
     (out / "validation.json").write_text(json.dumps(result, indent=2, default=float))
     md = report_markdown(result)

@@ -18,7 +18,10 @@ PAPER = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
 
 @pytest.fixture(scope="module")
 def spec():
-    return build_spec(load_scenario(PAPER, ["contact.k_visc=2e4", "bearings.NDE.eta=0.1"]))
+    # the worn-bearing drag (off in the paper's forward case) is switched on so its derivative is checked too
+    return build_spec(load_scenario(PAPER, ["contact.k_visc=2e4", "bearings.NDE.eta=0.1",
+                                            "effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0",
+                                            "bearings.NDE.worn_drag_torque=1.5"]))
 
 
 def _states(spec, b):
@@ -129,7 +132,8 @@ def test_rotor_loads_jacobian():
             assert _close(Jv, Nv, 1e-5).all(), (t, x)
 
 
-@pytest.mark.parametrize("sets", [[], ["amb.t_drop=0.01", "amb.drop_axial=true"]])
+@pytest.mark.parametrize("sets", [[], ["amb.t_drop=0.01", "amb.drop_axial=true"],
+                                  ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0"]])
 def test_exudyn_system_jacobian_analytic_equals_numerical(sets):
     """Same model with and without jacobianUserFunction: Exudyn's ODE2 RHS Jacobians agree at a
     state with radial contact and face contact (checks the sign and scaling convention); with the

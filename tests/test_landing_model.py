@@ -81,6 +81,28 @@ def test_energy_balance_half_second_landing_at_7000rpm():
     assert all(val >= -1e-9 for val in e["dissipated_j"].values())
 
 
+def test_energy_balance_with_worn_bearing_drag():
+    """The worn-bearing drag torque is accounted for: its dissipation is positive and the
+    energy balance still closes (independent check of the drag's sign and power bookkeeping)."""
+    sc = _scenario(operating__t_end=0.25, solver__output_period=5e-5, effects__worn_bearing_drag=True,
+                   bearings__DE__worn_drag_torque=1.0, bearings__NDE__worn_drag_torque=1.0)
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"]
+    e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
+    # a race rolling at ~700 rad/s against 2 x 1 N m loses > 100 W; over > 0.1 s that is > 10 J
+    assert e["dissipated_j"]["worn_bearing_drag"] > 10.0
+    assert e["balance_error_relative"] < 0.01, e
+
+
+def test_worn_bearing_drag_needs_a_torque():
+    from rotorlanding.errors import InputError
+
+    with pytest.raises(InputError, match="effects.worn_bearing_drag.*worn_drag_torque"):
+        _scenario(effects__worn_bearing_drag=True)
+    with pytest.raises(InputError, match="worn_drag_torque"):
+        _scenario(bearings__DE__worn_drag_torque=-1.0)
+
+
 @pytest.mark.parametrize("e_target", [0.95, 0.9])
 def test_hunt_crossley_restitution(e_target):
     """A mass striking the race with k_visc = 3 k (1 - e) / (2 v_in) rebounds with ~e v_in."""

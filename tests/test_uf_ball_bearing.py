@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque
 
 HP = dict(contact_angle_deg=40.0, C_s=45000.0, d_m=0.085, z_hp=0.001, y_hp=0.33,
           omega_reg=0.1)
@@ -75,3 +75,16 @@ def test_harris_palmgren_regularised_sign():
     assert harris_palmgren_torque(0.0, 1000.0, 3000.0, **HP) == 0.0
     with pytest.raises(ValueError):
         harris_palmgren_torque(1.0, 1.0, 1.0, **{**HP, "contact_angle_deg": 0.0})
+
+
+def test_worn_drag_torque_is_a_regularised_coulomb_torque():
+    """Opposes the race spin, magnitude -> the set torque once |omega| >> omega_reg, odd,
+    load-independent, and never feeds energy in (T * omega <= 0)."""
+    for w in (733.0, 20.0, -50.0):
+        assert worn_drag_torque(w, 2.5) == pytest.approx(-2.5 * math.copysign(1.0, w), rel=1e-4)
+    assert worn_drag_torque(0.0, 2.5) == 0.0
+    assert worn_drag_torque(0.1, 2.5, omega_reg=0.1) == pytest.approx(-2.5 / math.sqrt(2.0))
+    for w in (-3.0, -1e-3, 1e-3, 0.05, 400.0):
+        assert worn_drag_torque(w, 1.7) == -worn_drag_torque(-w, 1.7)
+        assert worn_drag_torque(w, 1.7) * w < 0.0
+    assert worn_drag_torque(500.0, 0.0) == 0.0

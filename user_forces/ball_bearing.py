@@ -49,6 +49,22 @@ def ball_force(dy, dz, k_b1, k_b2, dvy=0.0, dvz=0.0, c_b=0.0):
     return (-k * dy - c_b * dvy, -k * dz - c_b * dvz)
 
 
+def worn_drag_torque(omega_race_rel, torque, omega_reg=OMEGA_REG_DEFAULT):
+    """Drag torque of a worn catcher bearing on the inner race [N m] (not in the paper).
+
+    A bearing damaged by repeated landings (spalled races, debris, a worn cage) has a friction
+    torque several times that of a new one, and most of it does not scale with load: we model
+    it as a speed-independent Coulomb torque ``torque`` [N m] (>= 0), regularised like eq 23,
+
+        T = -torque * omega / sqrt(omega^2 + omega_reg^2).
+
+    It is the missing effect of the backward-whirl landing (docs/paper_corrections.md, "worn
+    bearing"): with it the race cannot keep rolling when the landed load dips, the sleeve keeps
+    slipping, and the slip friction feeds a backward whirl.
+    """
+    return -torque * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + omega_reg * omega_reg)
+
+
 def harris_palmgren_torque(omega_race_rel, f_radial, f_axial, *, contact_angle_deg, C_s, d_m,
                            z_hp, y_hp, X_s=0.5, c1=7.1429e-5, c2=-1.2443e-2, c3=0.64129,
                            c4=0.9, c5=-0.1, omega_reg=OMEGA_REG_DEFAULT):

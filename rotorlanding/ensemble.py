@@ -1,0 +1,56 @@
+"""Landing ensembles: the same landing dropped from a few points of a small circle.
+
+Why: a rattling landing near a whirl threshold is chaotic. A rotor dropped from exactly the
+bearing centre has a mirror-symmetric start, and whether and when it whirls then hangs on
+round-off (class and onset changed with the time step). A real rotor is never dropped exactly
+centred: the AMBs hold it within a few micrometres. Dropping it from ``n`` points of a circle of
+radius ``radius_m`` (default 5 um, a typical AMB position error) and reporting the statistics of
+the members turns the landing into a result that does not hang on one trajectory.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from statistics import median
+
+DROP_RADIUS_M = 5e-6  # m: typical AMB position-control error of a levitated rotor
+
+
+def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
+    """``--set`` overrides of the ``n`` members: drops from equally spaced points of the circle."""
+    if n < 1:
+        raise ValueError(f"ensemble size must be >= 1, got {n}")
+    out = []
+    for k in range(n):
+        a = 2.0 * math.pi * k / n
+        out.append([f"amb.drop_offset_m=[{radius_m * math.cos(a)!r}, {radius_m * math.sin(a)!r}]"])
+    return out
+
+
+def ensemble_stats(members: list[dict]) -> dict:
+    """Statistics of member results, each a dict with ``direction``, ``frequency_hz``, ``onset_s``
+    and optionally ``v_disp_range_m`` / ``v_force_range_n`` ([min, max]).
+
+    ``direction``: the most frequent class (ties go to the whirl class, so a half-whirling
+    ensemble is not called calm); ``fraction``: share of members in that class; frequency and
+    onset: medians over the members of that class; ranges: medians of the members' min and max.
+    """
+    if not members:
+        raise ValueError("empty ensemble")
+    counts = Counter(m["direction"] for m in members)
+    top = max(counts.values())
+    classes = [c for c, k in counts.items() if k == top]
+    direction = next((c for c in ("backward", "forward") if c in classes), classes[0])
+    same = [m for m in members if m["direction"] == direction]
+    freqs = [m["frequency_hz"] for m in same if m.get("frequency_hz") is not None]
+    onsets = [m["onset_s"] for m in same if m.get("onset_s") is not None]
+    out = {"n": len(members), "direction": direction, "fraction": len(same) / len(members),
+           "counts": dict(counts),
+           "frequency_hz": median(freqs) if freqs and direction != "none" else None,
+           "onset_s": median(onsets) if onsets and direction != "none" else None}
+    for key in ("v_disp_range_m", "v_force_range_n"):
+        vals = [m[key] for m in members if m.get(key) is not None]
+        if vals:
+            out[key] = [median(v[0] for v in vals), median(v[1] for v in vals)]
+    return out

@@ -1,0 +1,72 @@
+"""Landing ensembles (rotorlanding.ensemble) and the drop offset they use (amb.drop_offset_m)."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.ensemble import drop_offsets, ensemble_stats
+from rotorlanding.errors import InputError
+from rotorlanding.landing import build_spec
+from rotorlanding.scenario import load_scenario
+
+SCEN = Path(__file__).resolve().parents[1] / "scenarios" / "landing_7000rpm.toml"
+
+
+def test_drop_offsets_are_equally_spaced_on_the_circle():
+    sets = drop_offsets(8, 5e-6)
+    assert len(sets) == 8
+    pts = []
+    for (s,) in sets:
+        key, val = s.split("=", 1)
+        assert key == "amb.drop_offset_m"
+        pts.append(complex(*eval(val)))
+    assert np.allclose(np.abs(pts), 5e-6, rtol=1e-12)
+    ang = np.sort(np.mod(np.angle(pts), 2 * math.pi))
+    assert np.allclose(np.diff(ang), math.pi / 4)
+    with pytest.raises(ValueError):
+        drop_offsets(0)
+
+
+def test_ensemble_stats_majority_and_medians():
+    m = [{"direction": "backward", "frequency_hz": f, "onset_s": o, "v_disp_range_m": [-a, a]}
+         for f, o, a in ((48.0, 0.1, 3e-4), (52.0, 0.3, 2e-4), (50.0, 0.2, 4e-4))]
+    m.append({"direction": "none", "frequency_hz": None, "onset_s": None, "v_disp_range_m": [-1e-4, 0.0]})
+    s = ensemble_stats(m)
+    assert s["direction"] == "backward" and s["fraction"] == 0.75 and s["counts"] == {"backward": 3, "none": 1}
+    assert s["frequency_hz"] == 50.0 and s["onset_s"] == 0.2
+    assert s["v_disp_range_m"] == pytest.approx([-2.5e-4, 2.5e-4])
+    # a tie between calm and whirling drops is reported as whirl, never as calm
+    tie = ensemble_stats(m[:1] + m[3:])
+    assert tie["direction"] == "backward" and tie["fraction"] == 0.5
+    calm = ensemble_stats(m[3:])
+    assert calm["direction"] == "none" and calm["frequency_hz"] is None
+
+
+def test_drop_offset_is_a_rigid_shift_of_the_levitated_rotor():
+    """Every FE node of the rotor moves by the offset, the modal (sag) part is unchanged."""
+    from rotorlanding.reduction import craig_bampton
+    from rotorlanding.timoshenko import assemble
+
+    sc = load_scenario(SCEN, ["amb.drop_offset_m=[3e-6, -4e-6]"])
+    base = build_spec(load_scenario(SCEN))
+    shifted = build_spec(sc)
+    q0, _ = base.initial_state()
+    q1, _ = shifted.initial_state()
+    red = sc.rotor.reduction
+    cb = craig_bampton(assemble(sc.rotor), red.boundary_stations, red.modes, rotations=False)
+    d = cb.T @ (q1 - q0)[: shifted.n_lat]  # FE DOFs per node: y, z, alpha, beta
+    ys, zs = np.arange(0, len(d), 4), np.arange(1, len(d), 4)
+    rots = np.r_[np.arange(2, len(d), 4), np.arange(3, len(d), 4)]
+    assert np.allclose(d[ys], 3e-6, atol=1e-12) and np.allclose(d[zs], -4e-6, atol=1e-12)
+    assert np.allclose(d[rots], 0.0, atol=1e-10)
+    assert np.array_equal(q1[shifted.n_lat:], q0[shifted.n_lat:])
+
+
+@pytest.mark.parametrize("value, match", [("[1e-3, 0.0]", "inside the radial clearance"),
+                                          ("[1e-6]", r"\[y, z\]"), ('"x"', r"\[y, z\]")])
+def test_drop_offset_bad_input(value, match):
+    with pytest.raises(InputError, match=match) as e:
+        load_scenario(SCEN, [f"amb.drop_offset_m={value}"])
+    assert "amb.drop_offset_m" in str(e.value)
