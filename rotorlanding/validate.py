@@ -184,7 +184,8 @@ def report_markdown(result: dict) -> str:
              f"{result['evaluation']['passed']} of {result['evaluation']['total']} acceptance checks pass.", "",
              *([f"Rig rotor: `{_shown(result['rig_overlay'])}` merged over every paper scenario (`--rig`).", ""]
                if result.get("rig_overlay") else []),
-             *([f"Run time: {result['run']['wall_s']} s wall for {len(s)} landings on {result['run']['workers']} "
+             *([f"Run time: {result['run']['wall_s']} s wall for {result['run'].get('landings', len(s))} landings on "
+                f"{result['run']['workers']} "
                 f"workers ({result['run']['cpus']} CPUs, Python {result['run']['python']}); per landing: "
                 + ", ".join(f"{k} {v} s" for k, v in result['run']['case_wall_s'].items()) + ".", ""]
                if "run" in result else []),
@@ -287,13 +288,18 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     # DE vertical and horizontal displacement of the three landings, with zooms
     f, axes = plt.subplots(3, 2, figsize=(12, 9), gridspec_kw={"width_ratios": [3, 1]})
     for row, key in enumerate(("no_whirl", "backward_whirl", "forward_7000")):
-        r = read_results(out / key / "results.h5")
+        path, label = out / key / "results.h5", key
+        ens = result.get("ensembles", {}).get(key)
+        if ens:  # show a drop of the ensemble's majority class (the centred drop may be the exception)
+            k = next(i for i, m in enumerate(ens["members"]) if m["direction"] == ens["direction"])
+            path, label = out / "ensembles" / f"{key}_drop{k}" / "results.h5", f"{key}\n(drop {k})"
+        r = read_results(path)
         t, se = r["time_s"], r["series"]
         for ax in axes[row]:
             ax.plot(t, se["DE_z_m"] * 1e3, label="vertical")
             ax.plot(t, se["DE_y_m"] * 1e3, label="horizontal", alpha=0.8)
             ax.grid(alpha=0.3)
-        axes[row, 0].set_ylabel(f"{key}\nDE [mm]")
+        axes[row, 0].set_ylabel(f"{label}\nDE [mm]")
         axes[row, 0].legend(fontsize=8, loc="upper right")
         t1 = t[-1]
         axes[row, 1].set_xlim(t1 - 0.05, t1)
@@ -332,7 +338,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
               "t_end_note": f"{QUICK_T_END} s each (--quick)" if quick else "full length (scenario t_end)",
               "paper": PAPER, "cases": summaries, "ensembles": ensembles,
               "run": {"wall_s": round(time.perf_counter() - wall0, 1), "workers": workers,
-                      "cpus": os.cpu_count(), "python": platform.python_version(),
+                      "cpus": os.cpu_count(), "python": platform.python_version(), "landings": len(jobs),
                       "case_wall_s": {k: round(v.get("performance", {}).get("wall_s", float("nan")), 2)
                                       for k, v in summaries.items()}}}
     result["evaluation"] = evaluate_cases(summaries, ensembles)
