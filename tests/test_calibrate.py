@@ -46,3 +46,22 @@ def test_tied_keys_expand_and_step_convergence_rule():
     assert not converged(a, dict(a, bw={"direction": "none", "frequency_hz": None}))
     assert not converged(a, dict(a, fw10000={"direction": "forward", "frequency_hz": 80.0}))
     assert not converged(a, dict(a, fw7000={"direction": "forward", "frequency_hz": 65.0, "force_max_n": 5000.0}))
+
+
+def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
+    """``cases`` restricts the score to the listed landings; ``ensemble`` runs the backward landing
+    as drops from a 5 um circle and scores the members' statistics."""
+    bw = {"bw": {"direction": "backward", "frequency_hz": 53.9, "onset_s": 0.4}}
+    total, parts = score(bw, ["bw"])
+    assert set(parts) == {"bw_freq", "bw_onset"} and total == pytest.approx(0.1)
+    space = tmp_path / "space.toml"
+    space.write_text('samples = 1\nseed = 1\nt_end = 0.3\ncases = ["bw"]\nensemble = 2\n[ranges]\n'
+                     '"bearings.DE.worn_drag_torque,bearings.NDE.worn_drag_torque" = {min = 2.0, max = 2.5}\n')
+    assert main(["calibrate", str(space), "--out", str(tmp_path / "c"), "--workers", "2"]) == 0
+    row = next(csv.DictReader(open(tmp_path / "c" / "calibration.csv")))
+    assert "fw7000_direction" not in row and 0.0 <= float(row["bw_fraction"]) <= 1.0
+    assert row["bw_direction"] in ("none", "backward", "forward")
+    bad = tmp_path / "bad.toml"
+    bad.write_text('cases = ["fw9000"]\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.2}\n')
+    assert main(["calibrate", str(bad)]) == 2
+    assert "fw9000" in capsys.readouterr().err
