@@ -34,6 +34,7 @@ import numpy as np
 from user_forces.axial import axial_force as _axial_force_py
 from user_forces import axial_rub as _axial_rub_mod
 from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.ball_bearing import worn_drag_torque as _worn_drag_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
 
 from .landing import G_ACC, BearingSpec, LandingSpec
@@ -44,6 +45,7 @@ _njit = numba.njit(cache=True, fastmath=False)
 _radial_contact = _njit(_radial_contact_py)
 _axial_force = _njit(_axial_force_py)
 _axial_rub = _njit(_axial_rub_py)
+_worn_drag = _njit(_worn_drag_py)
 
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
@@ -290,7 +292,7 @@ def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, v
     if P[P_DRAG] != 0.0:
         t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
     if P[P_TW] != 0.0:
-        t_race -= P[P_TW] * omi / math.sqrt(omi * omi + P[P_WREG2])
+        t_race += _worn_drag(omi, P[P_TW], OMEGA_REG_HP)
     # ribbon
     krib = P[P_KRIB]
     crib = P[P_CRIB]

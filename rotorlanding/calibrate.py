@@ -167,14 +167,14 @@ def _run_all(jobs, workers):
             it = list(ex.map(_run, jobs))
     else:
         it = list(map(_run, jobs))
-    members: dict[int, list] = {}
+    members: dict[tuple, list] = {}
     for i, case, r in it:
-        if "#" in case:
-            members.setdefault(i, []).append(r)
+        if "#" in case:  # "CASE#k": member k of CASE's ensemble
+            members.setdefault((i, case.split("#")[0]), []).append(r)
         else:
             results.setdefault(i, {})[case] = r
-    for i, m in members.items():
-        results.setdefault(i, {})["bw"] = ensemble_stats(m)
+    for (i, case), m in members.items():
+        results.setdefault(i, {})[case] = ensemble_stats(m)
     return results
 
 

@@ -16,9 +16,8 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from .ensemble import drop_offsets, ensemble_stats
 from .errors import InputError
-
-
 
 
 def project_root() -> Path:
@@ -79,8 +78,6 @@ def _member(summary: dict) -> dict:
 
 
 def _ensemble_jobs(out: Path, t_end, rig) -> list[tuple]:
-    from .ensemble import drop_offsets
-
     jobs = []
     for key, n in ENSEMBLE.items():
         fname, sets = CASES[key]
@@ -322,8 +319,6 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
     out.mkdir(parents=True, exist_ok=True)
     t_end = QUICK_T_END if quick else None
     rig = str(Path(rig).resolve()) if rig else None
-    from .ensemble import ensemble_stats
-
     jobs = [(k, f, sets, str(out), t_end, rig, True) for k, (f, sets) in CASES.items()]
     jobs += _ensemble_jobs(out, t_end, rig)
     wall0 = time.perf_counter()
