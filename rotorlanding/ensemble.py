@@ -30,11 +30,12 @@ def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
 
 def ensemble_stats(members: list[dict]) -> dict:
     """Statistics of member results, each a dict with ``direction``, ``frequency_hz``, ``onset_s``
-    and optionally ``v_disp_range_m`` / ``v_force_range_n`` ([min, max]).
+    and optionally ``end_s``, ``persistence``, ``v_disp_range_m`` / ``v_force_range_n`` ([min, max]).
 
     ``direction``: the most frequent class (ties go to the whirl class, so a half-whirling
     ensemble is not called calm); ``fraction``: share of members in that class; frequency and
-    onset: medians over the members of that class; ranges: medians of the members' min and max.
+    onset, end, persistence: medians over the members of that class; ranges: medians of the
+    members' min and max.
     """
     if not members:
         raise ValueError("empty ensemble")
@@ -49,6 +50,10 @@ def ensemble_stats(members: list[dict]) -> dict:
            "counts": dict(counts),
            "frequency_hz": median(freqs) if freqs and direction != "none" else None,
            "onset_s": median(onsets) if onsets and direction != "none" else None}
+    for key in ("end_s", "persistence"):
+        vals = [m[key] for m in same if m.get(key) is not None]
+        if vals and direction != "none":
+            out[key] = median(vals)
     for key in ("v_disp_range_m", "v_force_range_n"):
         vals = [m[key] for m in members if m.get(key) is not None]
         if vals:

@@ -238,13 +238,14 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
             whirls[b.name] = wr.to_dict()
         except ValueError as err:  # record too short for the analysis window
             whirls[b.name] = {"direction": "none", "frequency_hz": None, "onset_s": None, "amplitude_m": 0.0,
-                              "note": str(err)}
+                              "end_s": None, "persistence": 0.0, "note": str(err)}
     # report the DE bearing's whirl (the paper's reference node), others per bearing
     main = whirls.get("DE") or next(iter(whirls.values()))
     return {
         "scenario": sc.name,
         "whirl": {"direction": main["direction"], "frequency_hz": main["frequency_hz"], "onset_s": main["onset_s"],
-                  "amplitude_m": main.get("amplitude_m", 0.0), "per_bearing": whirls},
+                  "amplitude_m": main.get("amplitude_m", 0.0), "end_s": main.get("end_s"),
+                  "persistence": main.get("persistence", 0.0), "per_bearing": whirls},
         "bearings": bearings,
         "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
                    "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},

@@ -116,6 +116,8 @@ def format_summary(summary: dict) -> str:
     w = summary.get("whirl", {})
     if w:
         f = f" at {w['frequency_hz']:.1f} Hz from t = {w['onset_s']:.3f} s" if w.get("frequency_hz") else ""
+        if w.get("frequency_hz") and w.get("end_s") is not None:
+            f += f" to {w['end_s']:.3f} s (whirling {100 * w.get('persistence', 0.0):.0f} % of the time after onset)"
         lines.append(f"whirl (DE): {w['direction']}{f}")
     for name, b in summary.get("bearings", {}).items():
         lines.append(f"{name}: max contact force {b['max_contact_force_n']:.0f} N, vertical range "

@@ -74,6 +74,7 @@ def _member(summary: dict) -> dict:
     """The numbers of one ensemble member that the statistics use."""
     w, de = summary["whirl"], summary["bearings"]["DE"]
     return {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
+            "end_s": w.get("end_s"), "persistence": w.get("persistence"),
             "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"]}
 
 
@@ -213,10 +214,12 @@ def report_markdown(result: dict) -> str:
                   f"(`backward_whirl/`, figures): {s['backward_whirl']['whirl']['direction']}"
                   + (f" at {s['backward_whirl']['whirl']['frequency_hz']:.1f} Hz"
                      if s['backward_whirl']['whirl']['frequency_hz'] else "") + ".", "",
-                  "| drop | direction | frequency [Hz] | onset [s] | DE vertical displacement [mm] | "
-                  "DE vertical force [kN] |", "|---|---|---|---|---|---|"]
+                  "| drop | direction | frequency [Hz] | onset [s] | whirl ends [s] | whirling after onset | "
+                  "DE vertical displacement [mm] | DE vertical force [kN] |", "|---|---|---|---|---|---|---|---|"]
         for k, m in enumerate(ens["members"]):
+            pers = m.get("persistence") if m["direction"] != "none" else None
             lines.append(f"| {k} | {m['direction']} | {_fmt(m['frequency_hz'])} | {_fmt(m['onset_s'])} | "
+                         f"{_fmt(m.get('end_s'))} | {_fmt(pers, 100, 2) + ' %' if pers is not None else '-'} | "
                          f"{_fmt(m['v_disp_range_m'], 1e3)} | {_fmt(m['v_force_range_n'], 1e-3)} |")
         lines.append("")
     else:

@@ -256,12 +256,21 @@ class WhirlResult:
         Time [s] at which the whirl starts, in the time base of the input ``t``; None when none.
     amplitude_m : float
         Orbit radius [m] of the dominant component during the whirl phase (0 when none).
+    end_s : float or None
+        Time [s] at which the first sustained whirl stops (the record end if it does not), same
+        time base as ``onset_s``; None when none.
+    persistence : float
+        Share (0..1) of the analysed windows from the onset to the record end that whirl in
+        ``direction``: 1 for a whirl that never stops, lower for one that dies out or is
+        intermittent (0 when none).
     """
 
     direction: str
     frequency_hz: float | None
     onset_s: float | None
     amplitude_m: float
+    end_s: float | None = None
+    persistence: float = 0.0
 
     def __post_init__(self):
         if self.direction not in ("none", "forward", "backward"):
@@ -274,6 +283,8 @@ class WhirlResult:
             "frequency_hz": None if self.frequency_hz is None else float(self.frequency_hz),
             "onset_s": None if self.onset_s is None else float(self.onset_s),
             "amplitude_m": float(self.amplitude_m),
+            "end_s": None if self.end_s is None else float(self.end_s),
+            "persistence": float(self.persistence),
         }
 
 
@@ -342,6 +353,10 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
     6. ``frequency_hz`` and ``direction`` come from the full spectrum of the whole whirl phase
        (``onset_s`` to the end of the last window of the run), with sub-bin interpolation.
        ``amplitude_m`` is the median of the per-window dominant amplitudes of the run.
+    7. ``end_s``: the record end if the run reaches the last window; otherwise, within the last
+       window of the run, the last instant at which the envelope of step 5 is at or above the
+       threshold (the window end if it never drops below).  ``persistence``: share of the windows
+       from the first of the run to the last of the record that whirl in the same direction.
 
     Parameters
     ----------
@@ -480,7 +495,7 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
 
     f_pre = phase_peak(i_first)
 
-    # ---- onset refinement: envelope of the component at f_pre ----
+    # ---- onset / end refinement: envelope of the component at f_pre ----
     # Complex demodulation at f_pre, smoothed by a periodic Hann kernel spanning an integer number
     # (up to 3) of whirl periods: it cancels a constant offset and the mirror component exactly,
     # and a jump of the orbit centre by one clearance leaks at most ~0.11 clearance into it.
@@ -488,21 +503,35 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
     klen = period * min(3, max(1, nwin // period))
     kernel = _window("hann", klen)
     kernel /= kernel.sum()
-    a = max(0, i_first - klen // 2)
-    b = min(len(wa), i_first + nwin + klen)
-    idx = np.arange(a, b)
-    demod = wa[a:b] * np.exp(-2j * np.pi * f_pre * (idx - i_first) * dt)
-    env = np.abs(np.convolve(demod, kernel, mode="valid"))
-    centres = idx[: len(env)] + klen // 2
-    hit = np.nonzero((centres >= i_first) & (centres < i_first + nwin)
-                     & (env >= amplitude_threshold * clearance))[0]
-    first_centre = np.nonzero(centres >= i_first)[0]
-    if len(hit) == 0 or (len(first_centre) and hit[0] == first_centre[0]):
+
+    def envelope(i_w: int):
+        """Envelope centres and values over the window starting at ``i_w`` (plus a kernel margin)."""
+        a = max(0, i_w - klen // 2)
+        b = min(len(wa), i_w + nwin + klen)
+        idx = np.arange(a, b)
+        demod = wa[a:b] * np.exp(-2j * np.pi * f_pre * (idx - i_w) * dt)
+        env = np.abs(np.convolve(demod, kernel, mode="valid"))
+        centres = idx[: len(env)] + klen // 2
+        inside = (centres >= i_w) & (centres < i_w + nwin)
+        return centres[inside], env[inside] >= amplitude_threshold * clearance
+
+    centres, above = envelope(i_first)
+    if not above.any() or above[0]:
         i_onset = int(i_first)  # already whirling at the window start (or no crossing found)
     else:
-        i_onset = int(centres[hit[0]])
+        i_onset = int(centres[np.argmax(above)])
     if i_end - i_onset < _MIN_SAMPLES:
         i_onset = int(i_first)
+
+    if e == len(starts) - 1:
+        i_stop = len(wa) - 1  # whirling in the last window: it lasts to the record end
+    else:
+        centres, above = envelope(int(starts[e]))
+        i_stop = int(centres[np.nonzero(above)[0][-1]]) if above.any() else int(starts[e]) + nwin - 1
+        if above.any() and above[-1]:
+            i_stop = int(starts[e]) + nwin - 1
+        i_stop = max(i_stop, i_onset)
+    persistence = float(np.mean(sign[k:] == sign[k]))
 
     f_whirl = phase_peak(i_onset)
     if not np.isfinite(f_whirl) or f_whirl == 0:
@@ -510,4 +539,6 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
     return WhirlResult(direction="forward" if f_whirl > 0 else "backward",
                        frequency_hz=abs(f_whirl),
                        onset_s=float(ta[i_onset]),
-                       amplitude_m=amplitude)
+                       amplitude_m=amplitude,
+                       end_s=float(ta[i_stop]),
+                       persistence=persistence)

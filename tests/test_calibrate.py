@@ -51,9 +51,11 @@ def test_tied_keys_expand_and_step_convergence_rule():
 def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     """``cases`` restricts the score to the listed landings; ``ensemble`` runs the backward landing
     as drops from a 5 um circle and scores the members' statistics."""
-    bw = {"bw": {"direction": "backward", "frequency_hz": 53.9, "onset_s": 0.4}}
+    bw = {"bw": {"direction": "backward", "frequency_hz": 53.9, "onset_s": 0.4, "persistence": 0.75}}
     total, parts = score(bw, ["bw"])
-    assert set(parts) == {"bw_freq", "bw_onset"} and total == pytest.approx(0.1)
+    assert set(parts) == {"bw_freq", "bw_onset", "bw_persist"}
+    assert parts["bw_persist"] == pytest.approx(0.25) and total == pytest.approx(0.35)
+    assert score({"bw": {"direction": "none"}}, ["bw"])[0] == pytest.approx(3.0)
     space = tmp_path / "space.toml"
     space.write_text('samples = 1\nseed = 1\nt_end = 0.3\ncases = ["bw"]\nensemble = 2\n[ranges]\n'
                      '"bearings.DE.worn_drag_torque,bearings.NDE.worn_drag_torque" = {min = 2.0, max = 2.5}\n')
@@ -65,3 +67,27 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     bad.write_text('cases = ["fw9000"]\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.2}\n')
     assert main(["calibrate", str(bad)]) == 2
     assert "fw9000" in capsys.readouterr().err
+
+
+def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
+    """When none of the ``verify_top`` best designs converges at half the step, the next batch is
+    verified; converged designs rank first, unchecked next, unconverged last."""
+    from rotorlanding import calibrate as cal
+
+    def fake_run_all(jobs, workers):
+        out = {}
+        for i, case, _d, _t, _f, step_factor, _x in jobs:
+            f = 49.0 + 0.5 * i  # design i scores i * 0.5 / 49 on frequency alone
+            if step_factor != 1.0 and i != 4:
+                f *= 1.1  # only design 4 keeps its frequency at half the step
+            out[i] = {case: {"direction": "backward", "frequency_hz": f, "onset_s": 0.4, "persistence": 1.0}}
+        return out
+
+    monkeypatch.setattr(cal, "_run_all", fake_run_all)
+    space = tmp_path / "space.toml"
+    space.write_text('samples = 7\nseed = 1\ncases = ["bw"]\nverify_top = 2\n'
+                     '[ranges]\n"bearings.DE.worn_drag_torque" = {min = 1.0, max = 3.0}\n')
+    rows = cal.calibrate(space, tmp_path / "c", workers=1)
+    # batches (0, 1) and (2, 3) fail, (4, 5) holds the converged 4; 6 is never checked
+    assert [r["design"] for r in rows] == [4, 6, 0, 1, 2, 3, 5]
+    assert [r["converged"] for r in rows] == [True, None, False, False, False, False, False]

@@ -124,7 +124,7 @@ def test_bounces_then_rest_with_unbalance_response_is_not_whirl():
     res = whirl_analysis(t, w.real, w.imag, clearance=C, spin_hz=spin)
     assert res == WhirlResult("none", None, None, 0.0)
     assert res.to_dict() == {"direction": "none", "frequency_hz": None, "onset_s": None,
-                             "amplitude_m": 0.0}
+                             "amplitude_m": 0.0, "end_s": None, "persistence": 0.0}
 
 
 def test_rotor_at_rest_is_not_whirl():
@@ -191,9 +191,48 @@ def test_sustained_planar_rattle_is_not_whirl():
 def test_result_to_dict_plain_types():
     t, y, z = _drop_then_whirl(+65.0)
     d = whirl_analysis(t, y, z, clearance=C).to_dict()
-    assert set(d) == {"direction", "frequency_hz", "onset_s", "amplitude_m"}
+    assert set(d) == {"direction", "frequency_hz", "onset_s", "amplitude_m", "end_s", "persistence"}
     assert d["direction"] == "forward"
-    assert all(type(d[k]) is float for k in ("frequency_hz", "onset_s", "amplitude_m"))
+    assert all(type(d[k]) is float for k in ("frequency_hz", "onset_s", "amplitude_m", "end_s", "persistence"))
+
+
+def test_sustained_whirl_lasts_to_the_record_end():
+    t, y, z = _drop_then_whirl(-49.0, seed=4)
+    res = whirl_analysis(t, y, z, clearance=C, spin_hz=116.7)
+    assert res.end_s == pytest.approx(t[-1], abs=1.5 / FS)
+    assert res.persistence == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("t_stop", [0.83, 1.07])
+def test_whirl_that_dies_out_ends_at_the_threshold_crossing(t_stop):
+    # whirl of radius c from 0.4 s; from t_stop the radius decays with tau 20 ms, so the orbit falls
+    # below the threshold 0.3 c at t_stop + 0.02 ln(1/0.3); then the rotor rests at the bottom
+    t, y, z = _drop_then_whirl(-49.0, seed=5, noise=0.0)
+    w = y + 1j * z
+    after = t >= t_stop
+    w[after] = -1j * C + (w[after] + 1j * C) * np.exp(-(t[after] - t_stop) / 0.02)
+    res = whirl_analysis(t, w.real, w.imag, clearance=C)
+    assert res.direction == "backward" and res.onset_s == pytest.approx(0.4, abs=0.03)
+    # envelope smoothed over three whirl periods (61 ms): about +/- half of that
+    assert res.end_s == pytest.approx(t_stop + 0.02 * np.log(1 / 0.3), abs=0.035)
+    # windows from the onset to the last one of the record (0.05 s long, 0.0125 s apart)
+    n_after = np.floor((1.5 - 0.05 - 0.4) / 0.0125)
+    assert res.persistence == pytest.approx((res.end_s - 0.4) / 0.0125 / n_after, abs=0.1)
+    assert res.persistence < (t_stop - 0.3) / 1.1
+
+
+def test_intermittent_whirl_persistence_counts_only_whirling_windows():
+    # backward whirl bursts of 0.3 s separated by 0.2 s of rest: the first burst is the run.
+    # A Hann window (0.05 s) whirls once >= 0.3 of its Hann weight (its first ~0.4 = 0.02 s) lies
+    # in a burst, so window starts from 0.03 s before to 0.02 s before a burst's end whirl:
+    # 0.31 s of every 0.5 s, persistence ~0.62
+    t = _time(2.0)
+    burst = ((t >= 0.2) & ((t - 0.2) % 0.5 < 0.3))
+    w = np.where(burst, C * np.exp(-2j * np.pi * 49.0 * t), -1j * C)
+    res = whirl_analysis(t, w.real, w.imag, clearance=C)
+    assert res.direction == "backward" and res.onset_s == pytest.approx(0.2, abs=0.03)
+    assert res.end_s == pytest.approx(0.5, abs=0.035)
+    assert res.persistence == pytest.approx(0.62, abs=0.06)
 
 
 # ------------------------------------------------------------------ bad inputs
