@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from statistics import median
+from statistics import median, stdev
 
 DROP_RADIUS_M = 5e-6  # m: typical AMB position-control error of a levitated rotor
 
@@ -35,7 +35,9 @@ def ensemble_stats(members: list[dict]) -> dict:
     ``direction``: the most frequent class (ties go to the whirl class, so a half-whirling
     ensemble is not called calm); ``fraction``: share of members in that class; frequency and
     onset, end, persistence: medians over the members of that class; ranges: medians of the
-    members' min and max.
+    members' min and max.  ``frequency_se_hz``: standard error of the median frequency,
+    1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
+    rule for a median), the sampling noise against which a step-size change is judged.
     """
     if not members:
         raise ValueError("empty ensemble")
@@ -50,6 +52,8 @@ def ensemble_stats(members: list[dict]) -> dict:
            "counts": dict(counts),
            "frequency_hz": median(freqs) if freqs and direction != "none" else None,
            "onset_s": median(onsets) if onsets and direction != "none" else None}
+    if len(freqs) >= 2 and direction != "none":
+        out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
     for key in ("end_s", "persistence"):
         vals = [m[key] for m in same if m.get(key) is not None]
         if vals and direction != "none":

@@ -257,8 +257,9 @@ class WhirlResult:
     amplitude_m : float
         Orbit radius [m] of the dominant component during the whirl phase (0 when none).
     end_s : float or None
-        Time [s] at which the first sustained whirl stops (the record end if it does not), same
-        time base as ``onset_s``; None when none.
+        Time [s] at which the whirl is last seen (the record end if it is still whirling), same
+        time base as ``onset_s``; None when none.  Between onset and end it may pause: see
+        ``persistence``.
     persistence : float
         Share (0..1) of the analysed windows from the onset to the record end that whirl in
         ``direction``: 1 for a whirl that never stops, lower for one that dies out or is
@@ -353,9 +354,9 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
     6. ``frequency_hz`` and ``direction`` come from the full spectrum of the whole whirl phase
        (``onset_s`` to the end of the last window of the run), with sub-bin interpolation.
        ``amplitude_m`` is the median of the per-window dominant amplitudes of the run.
-    7. ``end_s``: the record end if the run reaches the last window; otherwise, within the last
-       window of the run, the last instant at which the envelope of step 5 is at or above the
-       threshold (the window end if it never drops below).  ``persistence``: share of the windows
+    7. ``end_s``: the record end if the last window whirls in the run's direction; otherwise,
+       within the last window that does, the last instant at which the envelope of step 5 is at
+       or above the threshold (the window end if it never drops below).  ``persistence``: share of the windows
        from the first of the run to the last of the record that whirl in the same direction.
 
     Parameters
@@ -523,13 +524,14 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
     if i_end - i_onset < _MIN_SAMPLES:
         i_onset = int(i_first)
 
-    if e == len(starts) - 1:
+    e_last = int(np.nonzero(sign == sign[k])[0][-1])  # last window whirling the same way
+    if e_last == len(starts) - 1:
         i_stop = len(wa) - 1  # whirling in the last window: it lasts to the record end
     else:
-        centres, above = envelope(int(starts[e]))
-        i_stop = int(centres[np.nonzero(above)[0][-1]]) if above.any() else int(starts[e]) + nwin - 1
+        centres, above = envelope(int(starts[e_last]))
+        i_stop = int(centres[np.nonzero(above)[0][-1]]) if above.any() else int(starts[e_last]) + nwin - 1
         if above.any() and above[-1]:
-            i_stop = int(starts[e]) + nwin - 1
+            i_stop = int(starts[e_last]) + nwin - 1
         i_stop = max(i_stop, i_onset)
     persistence = float(np.mean(sign[k:] == sign[k]))
 

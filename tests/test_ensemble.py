@@ -37,6 +37,7 @@ def test_ensemble_stats_majority_and_medians():
     assert s["direction"] == "backward" and s["fraction"] == 0.75 and s["counts"] == {"backward": 3, "none": 1}
     assert s["frequency_hz"] == 50.0 and s["onset_s"] == 0.2
     assert s["v_disp_range_m"] == pytest.approx([-2.5e-4, 2.5e-4])
+    assert s["frequency_se_hz"] == pytest.approx(1.2533 * 2.0 / 3 ** 0.5)  # sample sd of 48, 50, 52 is 2
     # a tie between calm and whirling drops is reported as whirl, never as calm
     tie = ensemble_stats(m[:1] + m[3:])
     assert tie["direction"] == "backward" and tie["fraction"] == 0.5
@@ -70,3 +71,27 @@ def test_drop_offset_bad_input(value, match):
     with pytest.raises(InputError, match=match) as e:
         load_scenario(SCEN, [f"amb.drop_offset_m={value}"])
     assert "amb.drop_offset_m" in str(e.value)
+
+
+def test_median_standard_error_matches_sampling_scatter():
+    """Independent check of the 1.2533 s / sqrt(k) rule: the scatter of medians of many drawn
+    ensembles of 8 normal frequencies (sd 3 Hz) agrees with the mean predicted error to 15 %."""
+    import numpy as np
+
+    rng = np.random.default_rng(7)
+    draws = rng.normal(50.0, 3.0, size=(4000, 8))
+    se = [ensemble_stats([{"direction": "backward", "frequency_hz": float(f), "onset_s": 0.1} for f in d])
+          ["frequency_se_hz"] for d in draws[:400]]
+    assert np.std(np.median(draws, axis=1)) == pytest.approx(np.mean(se), rel=0.15)
+
+
+def test_step_convergence_of_ensemble_medians_allows_for_their_noise():
+    from rotorlanding.calibrate import converged
+
+    a = {"bw": {"direction": "backward", "frequency_hz": 50.0, "frequency_se_hz": 1.4}}
+    b = {"bw": {"direction": "backward", "frequency_hz": 52.5, "frequency_se_hz": 1.4}}  # 5 %, 2 se = 4 Hz
+    assert converged(a, b)
+    far = {"bw": {"direction": "backward", "frequency_hz": 55.0, "frequency_se_hz": 1.4}}
+    assert not converged(a, far)
+    quiet = {"bw": {"direction": "backward", "frequency_hz": 52.5, "frequency_se_hz": 0.1}}
+    assert not converged(dict(a, bw=dict(a["bw"], frequency_se_hz=0.1)), quiet)  # single drops: 2 %

@@ -221,18 +221,18 @@ def test_whirl_that_dies_out_ends_at_the_threshold_crossing(t_stop):
     assert res.persistence < (t_stop - 0.3) / 1.1
 
 
-def test_intermittent_whirl_persistence_counts_only_whirling_windows():
-    # backward whirl bursts of 0.3 s separated by 0.2 s of rest: the first burst is the run.
-    # A Hann window (0.05 s) whirls once >= 0.3 of its Hann weight (its first ~0.4 = 0.02 s) lies
-    # in a burst, so window starts from 0.03 s before to 0.02 s before a burst's end whirl:
-    # 0.31 s of every 0.5 s, persistence ~0.62
-    t = _time(2.0)
-    burst = ((t >= 0.2) & ((t - 0.2) % 0.5 < 0.3))
+def test_intermittent_whirl_end_is_the_last_burst_and_persistence_its_share():
+    # backward whirl bursts of 0.3 s separated by 0.2 s of rest, the last ending at 1.5 s, then
+    # rest to 1.65 s.  A Hann window (0.05 s) whirls once >= 0.3 of its Hann weight (its first
+    # ~0.4 = 0.02 s) lies in a burst, so window starts from 0.03 s before to 0.02 s before a
+    # burst's end whirl: 3 x 0.31 s of the 1.43 s of window starts from the first -> ~0.65
+    t = _time(1.65)
+    burst = (t >= 0.2) & ((t - 0.2) % 0.5 < 0.3) & (t < 1.5)
     w = np.where(burst, C * np.exp(-2j * np.pi * 49.0 * t), -1j * C)
     res = whirl_analysis(t, w.real, w.imag, clearance=C)
     assert res.direction == "backward" and res.onset_s == pytest.approx(0.2, abs=0.03)
-    assert res.end_s == pytest.approx(0.5, abs=0.035)
-    assert res.persistence == pytest.approx(0.62, abs=0.06)
+    assert res.end_s == pytest.approx(1.5, abs=0.035)
+    assert res.persistence == pytest.approx(0.65, abs=0.06)
 
 
 # ------------------------------------------------------------------ bad inputs
