@@ -382,7 +382,7 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--measured", required=True, help="CSV, .mat, results.h5 or a feature table (.toml/.json)")
     dg.add_argument("--scenario", required=True, help="the model as it is (scenario TOML)")
     dg.add_argument("--out", default="diagnosis")
-    dg.add_argument("--candidates", default=None, help="comma-separated effect names (default: every effect off)")
+    dg.add_argument("--candidates", default=None, help="comma-separated effect names (default: every effect off except faults such as worn_bearing_drag)")
     dg.add_argument("--max-effects", type=int, default=1)
     dg.add_argument("--workers", type=int, default=2)
     dg.add_argument("--time-offset-s", type=float, default=None,

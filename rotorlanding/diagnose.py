@@ -137,11 +137,20 @@ def _calibrate(sim: _Simulator, name: str, current: list[str], maxiter: int) -> 
 
     eff = CATALOGUE[name]
     on = current + [f"effects.{name}=true"]
-    try:
-        for p in sim.points:
-            load_scenario(sim.scenario_path, sim.overrides(p, on))
-    except InputError as err:
-        return {"effect": name, "gap": float("inf"), "parameters": {}, "rows": [], "k": 0, "not_applicable": str(err)}
+    # an effect whose only missing input is the parameter the fit is about to supply (the worn
+    # drag torque) is applicable: probe again with it; report the first reason if both fail
+    probes = [on] + ([on + _param_overrides(eff.parameters[0], eff.parameters[0].lower)] if eff.parameters else [])
+    first_error = None
+    for probe in probes:
+        try:
+            for p in sim.points:
+                load_scenario(sim.scenario_path, sim.overrides(p, probe))
+            break
+        except InputError as err:
+            first_error = first_error or err
+    else:
+        return {"effect": name, "gap": float("inf"), "parameters": {}, "rows": [], "k": 0,
+                "not_applicable": str(first_error)}
     if not eff.parameters:
         g, rows, sims, err = sim.gap(on)
         return {"effect": name, "gap": g, "parameters": {}, "rows": rows, "k": 0, "directions": _directions(sims),
@@ -205,6 +214,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
             if candidates:
                 lacking = [n for n in lacking if n in candidates]
+            else:  # faults (a worn bearing) only on request: a healthy rig's gap is not a fault
+                lacking = [n for n in lacking if not CATALOGUE[n].fault]
             if not lacking:
                 break
             if sim.pool is not None and len(lacking) > 1:

@@ -23,6 +23,9 @@ class Effect:
     name: str
     signature: str
     parameters: tuple[Parameter, ...] = field(default_factory=tuple)
+    # a fault of a damaged machine rather than physics every landing has: `diagnose` tries it only
+    # when named in its candidates (its signature overlaps healthy effects such as windage)
+    fault: bool = False
 
 
 CATALOGUE = {
@@ -36,7 +39,8 @@ CATALOGUE = {
                                 "load dips, and the slip friction feeds a backward whirl of the order of the "
                                 "clearance that starts tenths of a second after the drop",
                                 (Parameter("worn_drag_torque", ("bearings.DE.worn_drag_torque",
-                                                                "bearings.NDE.worn_drag_torque"), 0.1, 5.0, True),)),
+                                                                "bearings.NDE.worn_drag_torque"), 0.1, 5.0, True),),
+                                fault=True),
     "windage": Effect("windage", "rotor deceleration growing with speed squared, present before and after "
                       "contact; races unaffected", (Parameter("c_w2", ("spin.c_w2",), 1e-8, 2e-6, True),)),
     "ribbon_cross_coupling": Effect("ribbon_cross_coupling", "hysteretic damping of orbiting motion: smaller "

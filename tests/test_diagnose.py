@@ -198,3 +198,20 @@ def test_paper_story_full(tmp_path):
     assert rep["gap_after"] <= 0.85 * rep["gap_before"]
     fixed = _whirl_fixed(rep)
     assert {"rpm_7000", "rpm_10000"} <= set(fixed) and not rep["steps"][0]["whirl_direction_broken_at"]
+
+
+def test_faults_are_candidates_only_on_request(tmp_path):
+    """A worn bearing is tried only when named; named, it is applicable (the probe supplies the
+    torque it is about to fit), and a clean model stays clean (no fault invented)."""
+    from rotorlanding.effects import CATALOGUE
+
+    assert CATALOGUE["worn_bearing_drag"].fault and not CATALOGUE["windage"].fault
+    model = tmp_path / "model.toml"
+    model.write_text(f'{KNOWN_RIG}\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.2\n')
+    feats = {"whirl_direction": ("none", 0.0)}
+    res = diagnose(feats, model, clearance=C, workers=1, maxiter=2)
+    tried = {c["effect"] for s in res["steps"] for c in s["candidates"]}
+    assert "worn_bearing_drag" not in tried
+    res = diagnose(feats, model, clearance=C, workers=1, maxiter=2, candidates=["worn_bearing_drag"])
+    cand = res["steps"][0]["candidates"][0]
+    assert cand["effect"] == "worn_bearing_drag" and "not_applicable" not in cand
