@@ -77,3 +77,35 @@ def test_paper_scenarios_found_from_the_checkout_after_a_regular_install(tmp_pat
     with pytest.raises(InputError, match="scenarios/paper"):
         v.project_root()
     assert main(["validate", "--out", str(tmp_path / "v"), "--quick"]) == 2
+
+
+def test_validation_judges_a_case_on_its_ensemble_not_its_centred_drop():
+    """A centred drop that whirls while most drops of its ensemble do not fails the check: the
+    ensemble's majority class is what a check judges (numbers: member medians)."""
+    from rotorlanding.validate import CASES, evaluate_cases
+
+    def case(direction, f=None, onset=None):
+        return {"whirl": {"direction": direction, "frequency_hz": f, "onset_s": onset},
+                "bearings": {"DE": {"vertical_displacement_range_m": [-3e-4, 2.5e-4],
+                                    "vertical_force_range_n": [-1e3, 5e3], "final_race_speed_rpm": 6990.0}},
+                "speeds": {"final_rotor_rpm": 7000.0}}
+
+    s = {"no_whirl": case("none"), "backward_whirl": case("backward", 50.0, 0.4),
+         "forward_3000": case("forward", 46.0, 0.1), "forward_7000": case("forward", 66.0, 0.1),
+         "forward_10000": case("forward", 75.0, 0.1), "forward_7000_no_axial_rub": case("none")}
+    assert set(s) == set(CASES)
+    centred = evaluate_cases(s)
+    assert centred["passed"] == centred["total"] == 15
+
+    def ens(direction, counts, f=None):
+        return {"n": 8, "direction": direction, "fraction": max(counts.values()) / 8, "counts": counts,
+                "frequency_hz": f, "onset_s": 0.1 if f else None, "v_disp_range_m": [-3e-4, 2.5e-4],
+                "v_force_range_n": [-1e3, 5e3]}
+
+    ensembles = {"forward_3000": ens("none", {"none": 7, "forward": 1}),
+                 "forward_7000": ens("forward", {"forward": 8}, 66.0)}
+    judged = {c["check"]: c for c in evaluate_cases(s, ensembles)["checks"]}
+    assert not judged["forward 3000 rpm: direction"]["pass"]
+    assert judged["forward 3000 rpm: direction"]["ours"] == "none (88 % of 8)"
+    assert not judged["forward 3000 rpm: frequency"]["pass"] and not judged["forward: frequency rises with speed"]["pass"]
+    assert judged["forward 7000 rpm: direction"]["pass"] and judged["forward 10000 rpm: frequency"]["pass"]
