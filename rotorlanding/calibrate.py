@@ -8,8 +8,8 @@ A space file lists the unknowns and their ranges (any scenario keys, arrays of t
     t_end = 0.8           # s per landing
     verify_top = 3        # re-run the best designs at half the step (step-convergence check)
     cases = ["bw"]        # optional: the landings scored (default all: fw3000, fw7000, fw10000, bw)
-    ensemble = 8          # optional: the backward landing as 8 drops from a 5 um circle, scored on
-                          # the members' majority class and medians (rotorlanding.ensemble)
+    ensemble = 8          # optional: every case as 8 drops from a 5 um circle, scored on the
+                          # members' majority class and medians (rotorlanding.ensemble)
     [fixed]               # optional: applied to every design (e.g. a solver step for the search)
     "solver.step" = 1e-4
     [ranges]
@@ -108,7 +108,7 @@ def _run(job):
 
     i, case, design, t_end, fixed, step_factor, extra = job
     sets = design_overrides(design, fixed) + [f"operating.t_end={t_end}"] + list(extra)
-    fname = CASES[case.split("#")[0]]  # "bw#3": member 3 of the backward-landing ensemble
+    fname = CASES[case.split("#")[0]]  # "bw#3": member 3 of the backward landing's ensemble
     try:
         sc = load_scenario(paper_dir() / fname, sets)
         if step_factor != 1.0:
@@ -118,7 +118,8 @@ def _run(job):
         w = s["whirl"]
         return i, case, {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
                          "end_s": w.get("end_s"), "persistence": w.get("persistence"),
-                         "force_max_n": s["bearings"]["DE"]["vertical_force_range_n"][1], "ok": info["complete"]}
+                         "force_max_n": s["bearings"]["DE"]["vertical_force_range_n"][1],
+                         "v_force_range_n": s["bearings"]["DE"]["vertical_force_range_n"], "ok": info["complete"]}
     except Exception as exc:  # a design that breaks the model scores badly, the search goes on
         return i, case, {"direction": "failed", "error": str(exc), "ok": False}
 
@@ -153,14 +154,14 @@ def score(res: dict, cases=tuple(CASES)) -> tuple[float, dict]:
 
 
 def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
-    """One job per design and case; the backward case as ``sp['ensemble']`` drops when > 1."""
+    """One job per design and case; each case as ``sp['ensemble']`` drops when > 1."""
     from .ensemble import drop_offsets
 
     jobs = []
     for i, d in designs.items():
         for c in sp["cases"]:
-            if c == "bw" and sp["ensemble"] > 1:
-                jobs += [(i, f"bw#{k}", d, sp["t_end"], sp["fixed"], step_factor, extra)
+            if sp["ensemble"] > 1:
+                jobs += [(i, f"{c}#{k}", d, sp["t_end"], sp["fixed"], step_factor, extra)
                          for k, extra in enumerate(drop_offsets(sp["ensemble"]))]
             else:
                 jobs.append((i, c, d, sp["t_end"], sp["fixed"], step_factor, []))
@@ -183,7 +184,10 @@ def _run_all(jobs, workers):
         else:
             results.setdefault(i, {})[case] = r
     for (i, case), m in members.items():
-        results.setdefault(i, {})[case] = ensemble_stats(m)
+        st = ensemble_stats(m)
+        if "v_force_range_n" in st:  # the force score reads the members' median peak
+            st["force_max_n"] = st["v_force_range_n"][1]
+        results.setdefault(i, {})[case] = st
     return results
 
 
@@ -221,8 +225,8 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
                      **{f"{c}_direction": results[i][c].get("direction") for c in cases},
                      **{f"{c}_hz": results[i][c].get("frequency_hz") for c in cases},
                      **({"bw_onset_s": results[i]["bw"].get("onset_s"),
-                         "bw_persistence": results[i]["bw"].get("persistence"),
-                         "bw_fraction": results[i]["bw"].get("fraction")} if sp["ensemble"] > 1 and "bw" in cases
+                         "bw_persistence": results[i]["bw"].get("persistence")} if "bw" in cases else {}),
+                     **({f"{c}_fraction": results[i][c].get("fraction") for c in cases} if sp["ensemble"] > 1
                         else {})})
     rows.sort(key=lambda r: r["score"])
     # verify the best designs at half the step, batch after batch, until one has converged

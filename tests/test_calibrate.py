@@ -91,3 +91,31 @@ def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
     # batches (0, 1) and (2, 3) fail, (4, 5) holds the converged 4; 6 is never checked
     assert [r["design"] for r in rows] == [4, 6, 0, 1, 2, 3, 5]
     assert [r["converged"] for r in rows] == [True, None, False, False, False, False, False]
+
+
+def test_ensemble_option_applies_to_every_case(monkeypatch, tmp_path):
+    """``ensemble = n`` runs each scored case as n drops; the members fold into the case's
+    statistics, and the forward force score reads their median peak force."""
+    from rotorlanding import calibrate as cal
+
+    sp = {"cases": ["fw7000", "bw"], "ensemble": 3, "t_end": 0.1, "fixed": {}}
+    jobs = cal._jobs({0: {"x": 1.0}}, sp, 1.0)
+    assert sorted(j[1] for j in jobs) == ["bw#0", "bw#1", "bw#2", "fw7000#0", "fw7000#1", "fw7000#2"]
+    assert all(len(j[6]) == 1 and j[6][0].startswith("amb.drop_offset_m=") for j in jobs)
+
+    def fake_run(job):
+        i, case, *_ = job
+        k = int(case.split("#")[1])
+        if case.startswith("fw"):
+            return i, case, {"direction": "forward", "frequency_hz": 64.0 + k, "onset_s": 0.1,
+                             "v_force_range_n": [-1e3, 4000.0 + 500.0 * k]}
+        return i, case, {"direction": "backward" if k else "none", "frequency_hz": 50.0 if k else None,
+                         "onset_s": 0.1 if k else None, "persistence": 1.0, "v_force_range_n": [0.0, 1.0]}
+
+    monkeypatch.setattr(cal, "_run", fake_run)
+    res = cal._run_all(jobs, workers=1)[0]
+    assert res["fw7000"]["direction"] == "forward" and res["fw7000"]["frequency_hz"] == 65.0
+    assert res["fw7000"]["force_max_n"] == 4500.0 and res["fw7000"]["fraction"] == 1.0
+    assert res["bw"]["direction"] == "backward" and res["bw"]["fraction"] == pytest.approx(2 / 3)
+    total, parts = cal.score(res, ["fw7000", "bw"])
+    assert parts["force"] == pytest.approx(0.0) and parts["fw7000"] == pytest.approx(0.0)
