@@ -45,6 +45,7 @@ from pathlib import Path
 import numpy as np
 
 from .config import Table, load_toml
+from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .validate import PAPER, paper_dir
 
@@ -115,11 +116,8 @@ def _run(job):
             sc = load_scenario(paper_dir() / fname, sets + [f"solver.step={sc.solver.step * step_factor!r}"])
         spec, t, q, v, info = simulate(sc, progress=False)
         s = summarize(spec, t, evaluate(spec, t, q, v))
-        w = s["whirl"]
-        return i, case, {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
-                         "end_s": w.get("end_s"), "persistence": w.get("persistence"),
-                         "force_max_n": s["bearings"]["DE"]["vertical_force_range_n"][1],
-                         "v_force_range_n": s["bearings"]["DE"]["vertical_force_range_n"], "ok": info["complete"]}
+        r = member_result(s)
+        return i, case, {**r, "force_max_n": r["v_force_range_n"][1], "ok": info["complete"]}
     except Exception as exc:  # a design that breaks the model scores badly, the search goes on
         return i, case, {"direction": "failed", "error": str(exc), "ok": False}
 
@@ -155,8 +153,6 @@ def score(res: dict, cases=tuple(CASES)) -> tuple[float, dict]:
 
 def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
     """One job per design and case; each case as ``sp['ensemble']`` drops when > 1."""
-    from .ensemble import drop_offsets
-
     jobs = []
     for i, d in designs.items():
         for c in sp["cases"]:
@@ -169,8 +165,6 @@ def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
 
 
 def _run_all(jobs, workers):
-    from .ensemble import ensemble_stats
-
     results: dict[int, dict] = {}
     if workers > 1:
         with ProcessPoolExecutor(workers) as ex:

@@ -28,6 +28,15 @@ def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
     return out
 
 
+def member_result(summary: dict) -> dict:
+    """The numbers of one landing (a run summary) that ensemble statistics and calibration use:
+    the DE whirl and the DE vertical displacement and force ranges."""
+    w, de = summary["whirl"], summary["bearings"]["DE"]
+    return {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
+            "end_s": w.get("end_s"), "persistence": w.get("persistence"),
+            "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"]}
+
+
 def ensemble_stats(members: list[dict]) -> dict:
     """Statistics of member results, each a dict with ``direction``, ``frequency_hz``, ``onset_s``
     and optionally ``end_s``, ``persistence``, ``v_disp_range_m`` / ``v_force_range_n`` ([min, max]).

@@ -35,7 +35,7 @@ from user_forces.spin import windage_torque
 
 from .forces import OMEGA_REG_HP
 from .landing import G_ACC, LandingSpec
-from .whirl import whirl_analysis
+from .whirl import WhirlResult, whirl_analysis
 
 MECHANISMS = ("radial_friction", "contact_damping", "axial_rub", "ball_damping", "ball_drag", "worn_bearing_drag",
               "ribbon_damping", "ribbon_cross_coupling", "outer_race_coulomb", "windage", "axial_damping",
@@ -237,15 +237,12 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
             wr = whirl_analysis(tu, yu, zu, clearance=b.params.clearance, spin_hz=spin_rpm / 60.0, t_start=t_drop)
             whirls[b.name] = wr.to_dict()
         except ValueError as err:  # record too short for the analysis window
-            whirls[b.name] = {"direction": "none", "frequency_hz": None, "onset_s": None, "amplitude_m": 0.0,
-                              "end_s": None, "persistence": 0.0, "note": str(err)}
+            whirls[b.name] = {**WhirlResult("none", None, None, 0.0).to_dict(), "note": str(err)}
     # report the DE bearing's whirl (the paper's reference node), others per bearing
     main = whirls.get("DE") or next(iter(whirls.values()))
     return {
         "scenario": sc.name,
-        "whirl": {"direction": main["direction"], "frequency_hz": main["frequency_hz"], "onset_s": main["onset_s"],
-                  "amplitude_m": main.get("amplitude_m", 0.0), "end_s": main.get("end_s"),
-                  "persistence": main.get("persistence", 0.0), "per_bearing": whirls},
+        "whirl": {**main, "per_bearing": whirls},
         "bearings": bearings,
         "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
                    "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},

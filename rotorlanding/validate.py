@@ -17,7 +17,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from .ensemble import drop_offsets, ensemble_stats
+from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 
 
@@ -74,14 +74,6 @@ def _run_case(args):
     return key, summary
 
 
-def _member(summary: dict) -> dict:
-    """The numbers of one ensemble member that the statistics use."""
-    w, de = summary["whirl"], summary["bearings"]["DE"]
-    return {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
-            "end_s": w.get("end_s"), "persistence": w.get("persistence"),
-            "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"]}
-
-
 def _ensemble_jobs(out: Path, t_end, rig) -> list[tuple]:
     jobs = []
     for key, n in ENSEMBLE.items():
@@ -91,16 +83,15 @@ def _ensemble_jobs(out: Path, t_end, rig) -> list[tuple]:
     return jobs
 
 
-def _judged(s: dict, ensembles: dict | None, key: str) -> tuple[dict, str]:
-    """The whirl result a check judges and how it is shown: the ensemble statistics when the case
-    has an ensemble (direction = majority class, numbers = member medians), else the case's own."""
+def _judged(s: dict, ensembles: dict | None, key: str) -> tuple[dict, str, str]:
+    """What a check judges, how it is shown, and the rule's note: the ensemble statistics when
+    the case has an ensemble (direction = majority class, numbers = member medians), else the
+    case's own centred drop."""
     ens = (ensembles or {}).get(key)
     if ens:
-        return ens, f"{ens['direction']} ({round(100 * ens['fraction'])} % of {ens['n']})"
-    w = dict(s[key]["whirl"])
-    de = s[key]["bearings"]["DE"]
-    w.update(v_disp_range_m=de["vertical_displacement_range_m"], v_force_range_n=de["vertical_force_range_n"])
-    return w, w["direction"]
+        return (ens, f"{ens['direction']} ({round(100 * ens['fraction'])} % of {ens['n']})",
+                f"; judged on the majority of the {ens['n']} drops from a 5 um circle, numbers: member medians")
+    return member_result(s[key]), s[key]["whirl"]["direction"], ""
 
 
 def _rel(ours, ref):
@@ -120,20 +111,19 @@ def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
     def check(name, rule, ok, **values):
         checks.append({"check": name, "rule": rule, "pass": bool(ok), **values})
 
-    ens_rule = "; judged on the majority of the drops from a 5 um circle, numbers: member medians"
     nw = s["no_whirl"]
     de = nw["bearings"]["DE"]
     race_ratio = de["final_race_speed_rpm"] / max(nw["speeds"]["final_rotor_rpm"], 1e-9)
-    w, shown = _judged(s, ensembles, "no_whirl")
-    check("no-whirl: no sustained whirl", "whirl direction == none" + (ens_rule if "n" in w else ""),
+    w, shown, how = _judged(s, ensembles, "no_whirl")
+    check("no-whirl: no sustained whirl", "whirl direction == none" + how,
           w["direction"] == "none", ours=shown)
     check("no-whirl: inner race reaches rotor speed", "DE race / rotor speed at the end >= 0.97 (centred drop)",
           race_ratio >= 0.97, ours=round(race_ratio, 4))
 
     t1 = PAPER["table1"]["experimental"]
-    w, shown = _judged(s, ensembles, "backward_whirl")
+    w, shown, how = _judged(s, ensembles, "backward_whirl")
     b = w["v_disp_range_m"]
-    check("backward: direction", "whirl direction == backward" + (ens_rule if "n" in w else ""),
+    check("backward: direction", "whirl direction == backward" + how,
           w["direction"] == "backward", ours=shown)
     f_err = _rel(w["frequency_hz"], t1["frequency_hz"]) if w["direction"] == "backward" else None
     check("backward: frequency", "within 10 % of 49 Hz", f_err is not None and abs(f_err) <= 0.10,
@@ -148,10 +138,10 @@ def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
     fig = PAPER["fig39"]
     freqs = []
     for rpm, exp in zip(fig["speed_rpm"], fig["experimental_hz"]):
-        w, shown = _judged(s, ensembles, f"forward_{rpm}")
+        w, shown, how = _judged(s, ensembles, f"forward_{rpm}")
         freqs.append(w["frequency_hz"] if w["direction"] == "forward" else None)
         err = _rel(freqs[-1], exp)
-        check(f"forward {rpm} rpm: direction", "whirl direction == forward" + (ens_rule if "n" in w else ""),
+        check(f"forward {rpm} rpm: direction", "whirl direction == forward" + how,
               w["direction"] == "forward", ours=shown)
         check(f"forward {rpm} rpm: frequency", f"within 10 % of {exp:g} Hz", err is not None and abs(err) <= 0.10,
               ours=freqs[-1], paper_experimental=exp, relative_error=err)
@@ -161,9 +151,9 @@ def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
     fr = _judged(s, ensembles, "forward_7000")[0]["v_force_range_n"]
     check("forward 7000 rpm: vertical force range", "max same order as 4.5 kN (factor 2)",
           _order(fr[1], t2["v_force_max_n"]), ours=fr, paper_experimental=[t2["v_force_min_n"], t2["v_force_max_n"]])
-    w, shown = _judged(s, ensembles, "forward_7000_no_axial_rub")
-    check("axial rub causes the forward whirl", "axial_rub = false -> no forward whirl" +
-          (ens_rule if "n" in w else ""), w["direction"] != "forward", ours=shown)
+    w, shown, how = _judged(s, ensembles, "forward_7000_no_axial_rub")
+    check("axial rub causes the forward whirl", "axial_rub = false -> no forward whirl" + how,
+          w["direction"] != "forward", ours=shown)
     return {"checks": checks, "passed": sum(c["pass"] for c in checks), "total": len(checks)}
 
 
@@ -249,7 +239,7 @@ def report_markdown(result: dict) -> str:
         lines.append(f"| {name} | {_fmt(ps)} | {_fmt(pe)} | {_fmt(ours)} | {_fmt(err, 100, 3) + ' %'} |")
     fig = PAPER["fig39"]
     for rpm, ps, pe in zip(fig["speed_rpm"], fig["simulated_hz"], fig["experimental_hz"]):
-        w, shown = _judged(s, ensembles, f"forward_{rpm}")
+        w, shown, _ = _judged(s, ensembles, f"forward_{rpm}")
         ours = w["frequency_hz"] if w["direction"] == "forward" else None
         err = _rel(ours, pe)
         lines.append(f"| forward whirl frequency at {rpm} rpm [Hz] (ours: {shown}) | {ps:g} | {pe:g} | "
@@ -351,7 +341,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
             summaries = dict(ex.map(_run_case, jobs))
     else:
         summaries = dict(map(_run_case, jobs))
-    members = {key: [_member(summaries.pop(f"{key}_drop{k}")) for k in range(n)] for key, n in ENSEMBLE.items()}
+    members = {key: [member_result(summaries.pop(f"{key}_drop{k}")) for k in range(n)] for key, n in ENSEMBLE.items()}
     ensembles = {key: {**ensemble_stats(m), "members": m} for key, m in members.items()}
     result = {"version": __version__, "quick": quick, "rig_overlay": rig,
               "t_end_note": f"{QUICK_T_END} s each (--quick)" if quick else "full length (scenario t_end)",

@@ -356,8 +356,9 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
        ``amplitude_m`` is the median of the per-window dominant amplitudes of the run.
     7. ``end_s``: the record end if the last window whirls in the run's direction; otherwise,
        within the last window that does, the last instant at which the envelope of step 5 is at
-       or above the threshold (the window end if it never drops below).  ``persistence``: share of the windows
-       from the first of the run to the last of the record that whirl in the same direction.
+       or above the threshold (the window end if it never reaches it there).  ``persistence``:
+       share of the windows from the first of the run to the last of the record that whirl in
+       the same direction.
 
     Parameters
     ----------
@@ -529,10 +530,7 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
         i_stop = len(wa) - 1  # whirling in the last window: it lasts to the record end
     else:
         centres, above = envelope(int(starts[e_last]))
-        i_stop = int(centres[np.nonzero(above)[0][-1]]) if above.any() else int(starts[e_last]) + nwin - 1
-        if above.any() and above[-1]:
-            i_stop = int(starts[e_last]) + nwin - 1
-        i_stop = max(i_stop, i_onset)
+        i_stop = max(int(centres[above][-1]) if above.any() else int(starts[e_last]) + nwin - 1, i_onset)
     persistence = float(np.mean(sign[k:] == sign[k]))
 
     f_whirl = phase_peak(i_onset)
