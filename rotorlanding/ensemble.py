@@ -30,9 +30,11 @@ def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
 
 def member_result(summary: dict) -> dict:
     """The numbers of one landing (a run summary) that ensemble statistics and calibration use:
-    the DE whirl and the DE vertical displacement and force ranges."""
+    the landing's whirl (``postprocess.landing_whirl_bearing``: the DE's, or another bearing's when
+    only that one whirls), where it was found, and the DE vertical displacement and force ranges."""
     w, de = summary["whirl"], summary["bearings"]["DE"]
-    return {"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
+    return {"direction": w["direction"], "bearing": w.get("bearing", "DE"),
+            "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
             "end_s": w.get("end_s"), "persistence": w.get("persistence"),
             "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"]}
 
@@ -44,7 +46,8 @@ def ensemble_stats(members: list[dict]) -> dict:
     ``direction``: the most frequent class (ties go to the whirl class, so a half-whirling
     ensemble is not called calm); ``fraction``: share of members in that class; frequency and
     onset, end, persistence: medians over the members of that class; ranges: medians of the
-    members' min and max.  ``frequency_se_hz``: standard error of the median frequency,
+    members' min and max; ``bearings``: how many members of the whirl class whirled at which
+    bearing (members without ``bearing`` count as DE).  ``frequency_se_hz``: standard error of the median frequency,
     1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
     rule for a median), the sampling noise against which a step-size change is judged.
     """
@@ -63,6 +66,8 @@ def ensemble_stats(members: list[dict]) -> dict:
            "onset_s": median(onsets) if onsets and direction != "none" else None}
     if len(freqs) >= 2 and direction != "none":
         out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
+    if direction != "none":
+        out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
     for key in ("end_s", "persistence"):
         vals = [m[key] for m in same if m.get(key) is not None]
         if vals and direction != "none":

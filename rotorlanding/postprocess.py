@@ -211,6 +211,24 @@ def uniform(t: np.ndarray, *arrays: np.ndarray):
     return (tu,) + tuple(np.interp(tu, t, a) for a in arrays)
 
 
+def landing_whirl_bearing(whirls: dict, reference: str = "DE") -> str:
+    """The bearing whose whirl is the landing's whirl: the reference bearing (the DE, the paper's
+    measuring node) when its journal whirls, else the bearing whose journal starts whirling first.
+
+    Why not the DE alone: in a combined landing the thrust-face friction can drive the NDE journal
+    round its clearance while the gravity-loaded DE journal stays at the bottom (our 3000 rpm
+    landing); a summary reading only the DE would call such a landing calm.  A whirl at any
+    catcher bearing is a whirl of the rotor; ``per_bearing`` keeps every bearing's result."""
+    if not whirls:
+        raise ValueError("no bearings to take a whirl from")
+    ref = reference if reference in whirls else next(iter(whirls))
+    if whirls[ref]["direction"] != "none":
+        return ref
+    moving = [name for name, w in whirls.items() if w["direction"] != "none"]
+    # earliest onset; dict order (the scenario's bearing order) breaks ties
+    return min(moving, key=lambda name: whirls[name]["onset_s"] or 0.0) if moving else ref
+
+
 def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float | None = None) -> dict:
     sc = spec.scenario
     t_drop = sc.amb.t_drop if t_drop is None else t_drop
@@ -238,11 +256,10 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
             whirls[b.name] = wr.to_dict()
         except ValueError as err:  # record too short for the analysis window
             whirls[b.name] = {**WhirlResult("none", None, None, 0.0).to_dict(), "note": str(err)}
-    # report the DE bearing's whirl (the paper's reference node), others per bearing
-    main = whirls.get("DE") or next(iter(whirls.values()))
+    name = landing_whirl_bearing(whirls)
     return {
         "scenario": sc.name,
-        "whirl": {**main, "per_bearing": whirls},
+        "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls},
         "bearings": bearings,
         "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
                    "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},

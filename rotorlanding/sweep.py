@@ -56,7 +56,7 @@ from .config import Table, load_toml
 from .errors import InputError
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
-              "whirl_end_s", "whirl_persistence",
+              "whirl_end_s", "whirl_persistence", "whirl_bearing",
               "DE_max_contact_force_n", "NDE_max_contact_force_n", "DE_vertical_min_m", "DE_vertical_max_m",
               "final_rotor_rpm", "energy_dissipated_j", "wall_s"]
 
@@ -298,7 +298,7 @@ def summary_row(s: dict) -> dict:
     b = s.get("bearings", {})
     return {"whirl_direction": s["whirl"]["direction"], "whirl_frequency_hz": s["whirl"]["frequency_hz"],
             "whirl_onset_s": s["whirl"]["onset_s"], "whirl_end_s": s["whirl"].get("end_s"),
-            "whirl_persistence": s["whirl"].get("persistence"),
+            "whirl_persistence": s["whirl"].get("persistence"), "whirl_bearing": s["whirl"].get("bearing"),
             "DE_max_contact_force_n": b.get("DE", {}).get("max_contact_force_n"),
             "NDE_max_contact_force_n": b.get("NDE", {}).get("max_contact_force_n"),
             "DE_vertical_min_m": b.get("DE", {}).get("vertical_displacement_range_m", [None, None])[0],
