@@ -31,12 +31,14 @@ def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
 def member_result(summary: dict) -> dict:
     """The numbers of one landing (a run summary) that ensemble statistics and calibration use:
     the landing's whirl (``postprocess.landing_whirl_bearing``: the DE's, or another bearing's when
-    only that one whirls), where it was found, and the DE vertical displacement and force ranges."""
+    only that one whirls), where it was found, the DE vertical displacement and force ranges, and
+    the DE inner race's speed over the rotor's at the end (``race_to_rotor``)."""
     w, de = summary["whirl"], summary["bearings"]["DE"]
     return {"direction": w["direction"], "bearing": w.get("bearing", "DE"),
             "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
             "end_s": w.get("end_s"), "persistence": w.get("persistence"),
-            "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"]}
+            "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"],
+            "race_to_rotor": de["final_race_speed_rpm"] / max(summary["speeds"]["final_rotor_rpm"], 1e-9)}
 
 
 def ensemble_stats(members: list[dict]) -> dict:
@@ -46,7 +48,7 @@ def ensemble_stats(members: list[dict]) -> dict:
     ``direction``: the most frequent class (ties go to the whirl class, so a half-whirling
     ensemble is not called calm); ``fraction``: share of members in that class; frequency and
     onset, end, persistence: medians over the members of that class; ranges: medians of the
-    members' min and max; ``bearings``: how many members of the whirl class whirled at which
+    members' min and max; ``race_to_rotor``: median over all members; ``bearings``: how many members of the whirl class whirled at which
     bearing (members without ``bearing`` count as DE).  ``frequency_se_hz``: standard error of the median frequency,
     1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
     rule for a median), the sampling noise against which a step-size change is judged.
@@ -72,6 +74,9 @@ def ensemble_stats(members: list[dict]) -> dict:
         vals = [m[key] for m in same if m.get(key) is not None]
         if vals and direction != "none":
             out[key] = median(vals)
+    ratios = [m["race_to_rotor"] for m in members if m.get("race_to_rotor") is not None]
+    if ratios:
+        out["race_to_rotor"] = median(ratios)
     for key in ("v_disp_range_m", "v_force_range_n"):
         vals = [m[key] for m in members if m.get(key) is not None]
         if vals:

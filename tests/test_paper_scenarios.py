@@ -112,12 +112,17 @@ def test_validation_judges_a_case_on_its_ensemble_not_its_centred_drop():
     def ens(direction, counts, f=None):
         return {"n": 8, "direction": direction, "fraction": max(counts.values()) / 8, "counts": counts,
                 "frequency_hz": f, "onset_s": 0.1 if f else None, "v_disp_range_m": [-3e-4, 2.5e-4],
-                "v_force_range_n": [-1e3, 5e3]}
+                "v_force_range_n": [-1e3, 5e3], "race_to_rotor": 0.9}
 
-    ensembles = {"forward_3000": ens("none", {"none": 7, "forward": 1}),
+    ensembles = {"no_whirl": ens("none", {"none": 8}),
+                 "forward_3000": ens("none", {"none": 7, "forward": 1}),
                  "forward_7000": ens("forward", {"forward": 8}, 66.0)}
     judged = {c["check"]: c for c in evaluate_cases(s, ensembles)["checks"]}
     assert not judged["forward 3000 rpm: direction"]["pass"]
     assert judged["forward 3000 rpm: direction"]["ours"] == "none (88 % of 8)"
     assert not judged["forward 3000 rpm: frequency"]["pass"] and not judged["forward: frequency rises with speed"]["pass"]
     assert judged["forward 7000 rpm: direction"]["pass"] and judged["forward 10000 rpm: frequency"]["pass"]
+    # the race check reads the members' median too (centred drop: 6990 / 7000 passes)
+    assert judged["no-whirl: no sustained whirl"]["pass"]
+    assert not judged["no-whirl: inner race reaches rotor speed"]["pass"]
+    assert judged["no-whirl: inner race reaches rotor speed"]["ours"] == 0.9
