@@ -308,6 +308,11 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     xs = [r for r, w in zip(fig["speed_rpm"], ours) if w["direction"] == "forward"]
     ys = [w["frequency_hz"] for w in ours if w["direction"] == "forward"]
     ax.plot(xs, ys, "r^-", ms=8, label="rotorlanding")
+    for rpm, w in zip(fig["speed_rpm"], ours):
+        where = [b for b, k in (w.get("bearings") or {}).items() if b != "DE" and k > (w["bearings"].get("DE", 0))]
+        if w["direction"] == "forward" and where:  # the paper's points are DE whirls: say where ours is
+            ax.annotate(f"whirl at the {where[0]} journal", (rpm, w["frequency_hz"]), textcoords="offset points",
+                        xytext=(10, 0), va="center", fontsize=8, color="r")
     ax.set_xlabel("rotor speed [rpm]")
     ax.set_ylabel("forward whirl frequency [Hz]")
     ax.grid(alpha=0.3)
