@@ -210,7 +210,7 @@ def _units(names):
 CHUNK_COLUMNS = {  # /coastdown/chunks/NAME: one row per finished chunk
     "t_start_s": "s", "t_end_s": "s", "rotor_speed_rpm": "rpm", "wall_s": "s (solver only)", "steps": "-",
     "newton_iterations": "-", "jacobians": "-", "samples_kept": "-", "samples_fast": "-",
-    "whirl_direction": "-1 backward, 0 none, +1 forward (DE bearing, per chunk)", "whirl_frequency_hz": "Hz",
+    "whirl_direction": "-1 backward, 0 none, +1 forward (per chunk; the DE journal's, else the bearing that whirls)", "whirl_frequency_hz": "Hz",
 }
 
 
@@ -350,20 +350,24 @@ class Interrupted(Exception):
 
 
 def _classify_whirl(spec, t, q, v, chunk_s):
-    """Whirl of the DE (else first) bearing within one chunk, from the full-rate samples (before
-    decimation): (direction -1/0/1, frequency [Hz] or nan)."""
-    from .whirl import whirl_analysis
+    """The landing's whirl within one chunk (the DE journal's, else the bearing whose journal whirls
+    first: ``whirl.landing_whirl_bearing``), from the full-rate samples (before decimation):
+    (direction -1/0/1, frequency [Hz] or nan)."""
+    from .whirl import landing_whirl_bearing, whirl_analysis
 
-    b = next((b for b in spec.bearings if b.name == "DE"), spec.bearings[0])
-    try:
-        tu, yu, zu, rpm = uniform(t, q[:, b.i_station], q[:, b.i_station + 1], v[:, spec.i_theta] * 30 / math.pi)
-        window = min(0.05, chunk_s / 2)
-        wr = whirl_analysis(tu, yu, zu, clearance=b.params.clearance, spin_hz=np.maximum(np.abs(rpm) / 60.0, 1e-6),
-                            window_s=window, min_duration_s=0.5 * (chunk_s - window))
-    except (ValueError, InputError):
-        return 0, float("nan")
-    d = {"none": 0, "forward": 1, "backward": -1}[wr.direction]
-    return d, (wr.frequency_hz if wr.frequency_hz is not None else float("nan"))
+    whirls = {}
+    for b in spec.bearings:
+        try:
+            tu, yu, zu, rpm = uniform(t, q[:, b.i_station], q[:, b.i_station + 1], v[:, spec.i_theta] * 30 / math.pi)
+            window = min(0.05, chunk_s / 2)
+            whirls[b.name] = whirl_analysis(tu, yu, zu, clearance=b.params.clearance,
+                                            spin_hz=np.maximum(np.abs(rpm) / 60.0, 1e-6), window_s=window,
+                                            min_duration_s=0.5 * (chunk_s - window)).to_dict()
+        except (ValueError, InputError):
+            whirls[b.name] = {"direction": "none", "frequency_hz": None, "onset_s": None}
+    wr = whirls[landing_whirl_bearing(whirls)]
+    d = {"none": 0, "forward": 1, "backward": -1}[wr["direction"]]
+    return d, (wr["frequency_hz"] if wr["frequency_hz"] is not None else float("nan"))
 
 
 def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = False, overwrite: bool = False,

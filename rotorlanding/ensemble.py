@@ -14,6 +14,8 @@ import math
 from collections import Counter
 from statistics import median, stdev
 
+from .whirl import landing_whirl
+
 DROP_RADIUS_M = 5e-6  # m: typical AMB position-control error of a levitated rotor
 
 
@@ -30,15 +32,18 @@ def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
 
 def member_result(summary: dict) -> dict:
     """The numbers of one landing (a run summary) that ensemble statistics and calibration use:
-    the landing's whirl (``postprocess.landing_whirl_bearing``: the DE's, or another bearing's when
+    the landing's whirl (``whirl.landing_whirl_bearing``: the DE's, or another bearing's when
     only that one whirls), where it was found, the DE vertical displacement and force ranges, and
     the DE inner race's speed over the rotor's at the end (``race_to_rotor``)."""
-    w, de = summary["whirl"], summary["bearings"]["DE"]
-    return {"direction": w["direction"], "bearing": w.get("bearing", "DE"),
+    w = landing_whirl(summary["whirl"])
+    de = summary["bearings"].get("DE") or next(iter(summary["bearings"].values()))  # else the first bearing
+    rotor_rpm = summary["speeds"]["final_rotor_rpm"]
+    return {"direction": w["direction"], "bearing": w["bearing"],
             "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
             "end_s": w.get("end_s"), "persistence": w.get("persistence"),
             "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"],
-            "race_to_rotor": de["final_race_speed_rpm"] / max(summary["speeds"]["final_rotor_rpm"], 1e-9)}
+            # undefined once the rotor has (nearly) stopped
+            "race_to_rotor": de["final_race_speed_rpm"] / rotor_rpm if rotor_rpm > 1.0 else None}
 
 
 def ensemble_stats(members: list[dict]) -> dict:
@@ -48,8 +53,9 @@ def ensemble_stats(members: list[dict]) -> dict:
     ``direction``: the most frequent class (ties go to the whirl class, so a half-whirling
     ensemble is not called calm); ``fraction``: share of members in that class; frequency and
     onset, end, persistence: medians over the members of that class; ranges: medians of the
-    members' min and max; ``race_to_rotor``: median over all members; ``bearings``: how many members of the whirl class whirled at which
-    bearing (members without ``bearing`` count as DE).  ``frequency_se_hz``: standard error of the median frequency,
+    members' min and max; ``race_to_rotor``: median over all members; ``bearings``: how many
+    members of the whirl class whirled at which bearing (members without ``bearing`` count as DE);
+    ``de_whirls``: members of any class whose DE journal whirls.  ``frequency_se_hz``: standard error of the median frequency,
     1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
     rule for a median), the sampling noise against which a step-size change is judged.
     """
@@ -68,8 +74,12 @@ def ensemble_stats(members: list[dict]) -> dict:
            "onset_s": median(onsets) if onsets and direction != "none" else None}
     if len(freqs) >= 2 and direction != "none":
         out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
-    if direction != "none":
+    if direction in ("forward", "backward"):
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
+    # members (of any class) in which the DE journal itself whirls: the landing's whirl is the DE's
+    # whenever the DE whirls (whirl.landing_whirl_bearing)
+    out["de_whirls"] = sum(m["direction"] in ("forward", "backward") and m.get("bearing", "DE") == "DE"
+                           for m in members)
     for key in ("end_s", "persistence"):
         vals = [m[key] for m in same if m.get(key) is not None]
         if vals and direction != "none":

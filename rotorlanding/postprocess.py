@@ -35,7 +35,7 @@ from user_forces.spin import windage_torque
 
 from .forces import OMEGA_REG_HP
 from .landing import G_ACC, LandingSpec
-from .whirl import WhirlResult, whirl_analysis
+from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
 
 MECHANISMS = ("radial_friction", "contact_damping", "axial_rub", "ball_damping", "ball_drag", "worn_bearing_drag",
               "ribbon_damping", "ribbon_cross_coupling", "outer_race_coulomb", "windage", "axial_damping",
@@ -209,24 +209,6 @@ def uniform(t: np.ndarray, *arrays: np.ndarray):
     dt = float(np.median(np.diff(t)))
     tu = t[0] + dt * np.arange(int(np.floor((t[-1] - t[0]) / dt + 1e-9)) + 1)
     return (tu,) + tuple(np.interp(tu, t, a) for a in arrays)
-
-
-def landing_whirl_bearing(whirls: dict, reference: str = "DE") -> str:
-    """The bearing whose whirl is the landing's whirl: the reference bearing (the DE, the paper's
-    measuring node) when its journal whirls, else the bearing whose journal starts whirling first.
-
-    Why not the DE alone: in a combined landing the thrust-face friction can drive the NDE journal
-    round its clearance while the gravity-loaded DE journal stays at the bottom (our 3000 rpm
-    landing); a summary reading only the DE would call such a landing calm.  A whirl at any
-    catcher bearing is a whirl of the rotor; ``per_bearing`` keeps every bearing's result."""
-    if not whirls:
-        raise ValueError("no bearings to take a whirl from")
-    ref = reference if reference in whirls else next(iter(whirls))
-    if whirls[ref]["direction"] != "none":
-        return ref
-    moving = [name for name, w in whirls.items() if w["direction"] != "none"]
-    # earliest onset; dict order (the scenario's bearing order) breaks ties
-    return min(moving, key=lambda name: whirls[name]["onset_s"] or 0.0) if moving else ref
 
 
 def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float | None = None) -> dict:

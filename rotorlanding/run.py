@@ -19,6 +19,7 @@ from .landing import build_spec
 from .postprocess import evaluate, summarize
 from .results import write_results
 from .scenario import Scenario
+from .whirl import landing_whirl
 
 PROGRESS_MIN_STEPS = 20000
 ENERGY_WARN = 0.05  # relative energy-balance error above which the summary warns  # show a progress bar for runs of at least this many steps
@@ -113,14 +114,14 @@ def format_summary(summary: dict) -> str:
     """A few lines a designer reads first."""
     lines = [f"scenario: {summary['scenario']}" + ("" if summary.get("complete", True) else
                                                    f"  [INCOMPLETE: {summary.get('message', '')}]")]
-    w = summary.get("whirl", {})
+    w = landing_whirl(summary["whirl"]) if summary.get("whirl") else {}
     if w:
         f = f" at {w['frequency_hz']:.1f} Hz from t = {w['onset_s']:.3f} s" if w.get("frequency_hz") else ""
         if w.get("frequency_hz") and w.get("end_s") is not None:
             f += f" to {w['end_s']:.3f} s (whirling {100 * w.get('persistence', 0.0):.0f} % of the time after onset)"
-        where = f" at the {w['bearing']} bearing" if w.get("bearing") and w["direction"] != "none" else ""
+        where = f" at the {w['bearing']} bearing" if w["direction"] != "none" else ""
         others = [f"{k} {v['direction']}" + (f" {v['frequency_hz']:.1f} Hz" if v.get("frequency_hz") else "")
-                  for k, v in w.get("per_bearing", {}).items() if k != w.get("bearing")]
+                  for k, v in w.get("per_bearing", {}).items() if k != w["bearing"]]
         lines.append(f"whirl{where}: {w['direction']}{f}" + (f"; {', '.join(others)}" if others else ""))
     for name, b in summary.get("bearings", {}).items():
         lines.append(f"{name}: max contact force {b['max_contact_force_n']:.0f} N, vertical range "

@@ -54,6 +54,7 @@ import numpy as np
 
 from .config import Table, load_toml
 from .errors import InputError
+from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
               "whirl_end_s", "whirl_persistence", "whirl_bearing",
@@ -296,9 +297,10 @@ def _failed_row(idx: int, error: str, out_dir, details: str | None = None) -> di
 
 def summary_row(s: dict) -> dict:
     b = s.get("bearings", {})
-    return {"whirl_direction": s["whirl"]["direction"], "whirl_frequency_hz": s["whirl"]["frequency_hz"],
-            "whirl_onset_s": s["whirl"]["onset_s"], "whirl_end_s": s["whirl"].get("end_s"),
-            "whirl_persistence": s["whirl"].get("persistence"), "whirl_bearing": s["whirl"].get("bearing"),
+    w = landing_whirl(s["whirl"])  # also re-derives summaries of finished cases written before
+    return {"whirl_direction": w["direction"], "whirl_frequency_hz": w["frequency_hz"],
+            "whirl_onset_s": w["onset_s"], "whirl_end_s": w.get("end_s"), "whirl_persistence": w.get("persistence"),
+            "whirl_bearing": w["bearing"] if w["direction"] != "none" else None,
             "DE_max_contact_force_n": b.get("DE", {}).get("max_contact_force_n"),
             "NDE_max_contact_force_n": b.get("NDE", {}).get("max_contact_force_n"),
             "DE_vertical_min_m": b.get("DE", {}).get("vertical_displacement_range_m", [None, None])[0],
@@ -454,7 +456,7 @@ def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
     ax.set_ylabel(ky or "")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    ax.set_title("whirl class and frequency (DE)")
+    ax.set_title("whirl class and frequency (DE, else the bearing that whirls)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -25,7 +25,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["full_spectrum", "WhirlResult", "whirl_analysis", "default_window_s", "MIN_DIRECTIONALITY",
+__all__ = ["full_spectrum", "WhirlResult", "whirl_analysis", "landing_whirl_bearing", "landing_whirl", "default_window_s", "MIN_DIRECTIONALITY",
            "SPIN_TOLERANCE", "MIN_WINDOW_S", "WINDOW_SPIN_PERIODS"]
 
 #: A window only counts as whirling if its dominant component is at least this many times larger
@@ -542,3 +542,35 @@ def whirl_analysis(t, y, z, *, clearance, spin_hz=None, window_s=None, step_s=No
                        amplitude_m=amplitude,
                        end_s=float(ta[i_stop]),
                        persistence=persistence)
+
+
+def landing_whirl_bearing(whirls: dict, reference: str = "DE") -> str:
+    """The bearing whose whirl is the landing's whirl: the reference bearing (the DE, the paper's
+    measuring node) when its journal whirls, else the bearing whose journal starts whirling first.
+
+    Why not the DE alone: in a combined landing the thrust-face friction can drive the NDE journal
+    round its clearance while the gravity-loaded DE journal stays at the bottom (our 3000 rpm
+    landing); a summary reading only the DE would call such a landing calm.  A whirl at any
+    catcher bearing is a whirl of the rotor; ``per_bearing`` keeps every bearing's result."""
+    if not whirls:
+        raise ValueError("no bearings to take a whirl from")
+    ref = reference if reference in whirls else next(iter(whirls))
+    if whirls[ref]["direction"] != "none":
+        return ref
+    moving = [name for name, w in whirls.items() if w["direction"] != "none"]
+    # earliest onset (unknown onsets last); dict order (the scenario's bearing order) breaks ties
+    return min(moving, key=lambda name: _onset(whirls[name])) if moving else ref
+
+
+def _onset(w: dict) -> float:
+    return float("inf") if w.get("onset_s") is None else w["onset_s"]
+
+
+def landing_whirl(whirl: dict) -> dict:
+    """A summary's ``whirl`` entry with ``bearing`` set; a summary written before the landing's
+    whirl was chosen by :func:`landing_whirl_bearing` (its top level is the DE's) is re-derived
+    from its ``per_bearing`` results, so old and new results read the same way."""
+    if whirl.get("bearing") or not whirl.get("per_bearing"):
+        return {"bearing": "DE", **whirl}
+    name = landing_whirl_bearing(whirl["per_bearing"])
+    return {**whirl["per_bearing"][name], "bearing": name, "per_bearing": whirl["per_bearing"]}

@@ -19,6 +19,18 @@ ROOT = Path(__file__).resolve().parents[1]
 BASE = ROOT / "scenarios" / "landing_7000rpm.toml"
 
 
+@pytest.fixture(autouse=True)
+def _keep_environment():
+    """Dask's LocalCluster writes OMP_NUM_THREADS=1 (and the OpenBLAS / MKL twins) into this
+    process's os.environ for its workers. Left there, every later subprocess of the test session
+    runs BLAS single-threaded while this process does not, and results that must match bit for
+    bit (test_coastdown's kill-and-resume) differ in the 8th digit."""
+    before = dict(os.environ)
+    yield
+    os.environ.clear()
+    os.environ.update(before)
+
+
 def _sweep_file(tmp_path, grid, extra=""):
     f = tmp_path / "sweep.toml"
     lines = [f'scenario = "{BASE}"', 'mode = "grid"', extra, "[fixed]", '"operating.t_end" = 0.03', "[grid]"]
