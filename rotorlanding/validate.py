@@ -57,8 +57,8 @@ CASES = {
 QUICK_T_END = 0.5
 #: cases judged on an ensemble of drops from a 5 um circle (rotorlanding.ensemble): a landing near a
 #: whirl threshold is chaotic, and a centred drop's class can hang on round-off or the time step
-#: (the worn-bearing backward rattle; the forward whirl at 3000 rpm whirls in 1 of 8 drops at the
-#: rig step and 4 of 8 at half of it). Every case is judged the same way; the centred drop is
+#: (the worn-bearing backward rattle; at 3000 rpm the DE journal whirls in 1 of 8 drops at the rig
+#: step and 4 of 8 at half of it, while the NDE journal whirls in all). Every case is judged the same way; the centred drop is
 #: still run for the per-case figures.
 ENSEMBLE = {key: 8 for key in CASES}
 
