@@ -119,10 +119,14 @@ def format_summary(summary: dict) -> str:
         f = f" at {w['frequency_hz']:.1f} Hz from t = {w['onset_s']:.3f} s" if w.get("frequency_hz") else ""
         if w.get("frequency_hz") and w.get("end_s") is not None:
             f += f" to {w['end_s']:.3f} s (whirling {100 * w.get('persistence', 0.0):.0f} % of the time after onset)"
-        where = f" at the {w['bearing']} bearing" if w["direction"] != "none" else ""
-        others = [f"{k} {v['direction']}" + (f" {v['frequency_hz']:.1f} Hz" if v.get("frequency_hz") else "")
-                  for k, v in w.get("per_bearing", {}).items() if k != w["bearing"]]
-        lines.append(f"whirl{where}: {w['direction']}{f}" + (f"; {', '.join(others)}" if others else ""))
+        per = w.get("per_bearing", {})
+        if w["direction"] == "none":
+            lines.append("whirl: none" + (f" at {', '.join(per)}" if per else ""))
+        else:
+            others = [f"{k}: {v['direction']}" + (f" at {v['frequency_hz']:.1f} Hz" if v.get("frequency_hz") else "")
+                      for k, v in per.items() if k != w["bearing"]]
+            lines.append(f"whirl at the {w['bearing']} bearing: {w['direction']}{f}"
+                         + (f"; {'; '.join(others)}" if others else ""))
     for name, b in summary.get("bearings", {}).items():
         lines.append(f"{name}: max contact force {b['max_contact_force_n']:.0f} N, vertical range "
                      f"{b['vertical_displacement_range_m'][0] * 1e3:+.3f} / {b['vertical_displacement_range_m'][1] * 1e3:+.3f} mm, "
