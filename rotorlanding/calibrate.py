@@ -140,13 +140,11 @@ def score(res: dict, cases=tuple(CASES)) -> tuple[float, dict]:
         parts["force"] = min(1.0, abs(r["force_max_n"] / PAPER["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
     b = res.get("bw", {})
     t1 = PAPER["table1"]["experimental"]
-    if "bw" not in cases:
-        pass
-    elif b.get("direction") == "backward":
+    if "bw" in cases and b.get("direction") == "backward":
         parts["bw_freq"] = abs(b["frequency_hz"] - t1["frequency_hz"]) / t1["frequency_hz"]
         parts["bw_onset"] = min(1.0, abs(b["onset_s"] - t1["onset_s"]) / t1["onset_s"])
         parts["bw_persist"] = 1.0 - min(1.0, max(0.0, b.get("persistence", 1.0)))
-    else:
+    elif "bw" in cases:
         parts["bw_freq"] = parts["bw_onset"] = parts["bw_persist"] = 1.0
     return float(sum(parts.values())), parts
 

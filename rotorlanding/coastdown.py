@@ -353,7 +353,7 @@ def _classify_whirl(spec, t, q, v, chunk_s):
     """The landing's whirl within one chunk (the DE journal's, else the bearing whose journal whirls
     first: ``whirl.landing_whirl_bearing``), from the full-rate samples (before decimation):
     (direction -1/0/1, frequency [Hz] or nan)."""
-    from .whirl import landing_whirl_bearing, whirl_analysis
+    from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
 
     whirls = {}
     for b in spec.bearings:
@@ -364,7 +364,7 @@ def _classify_whirl(spec, t, q, v, chunk_s):
                                             spin_hz=np.maximum(np.abs(rpm) / 60.0, 1e-6), window_s=window,
                                             min_duration_s=0.5 * (chunk_s - window)).to_dict()
         except (ValueError, InputError):
-            whirls[b.name] = {"direction": "none", "frequency_hz": None, "onset_s": None}
+            whirls[b.name] = WhirlResult("none", None, None, 0.0).to_dict()
     wr = whirls[landing_whirl_bearing(whirls)]
     d = {"none": 0, "forward": 1, "backward": -1}[wr["direction"]]
     return d, (wr["frequency_hz"] if wr["frequency_hz"] is not None else float("nan"))

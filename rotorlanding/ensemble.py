@@ -55,8 +55,8 @@ def ensemble_stats(members: list[dict]) -> dict:
     onset, end, persistence: medians over the members of that class; ranges: medians of the
     members' min and max; ``race_to_rotor``: median over all members; ``bearings``: how many
     members of the whirl class whirled at which bearing (members without ``bearing`` count as DE);
-    ``de_whirls``: members of any class whose DE journal whirls.  ``frequency_se_hz``: standard error of the median frequency,
-    1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
+    ``de_whirls``: members of any class whose DE journal whirls.  ``frequency_se_hz``: standard
+    error of the median frequency, 1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
     rule for a median), the sampling noise against which a step-size change is judged.
     """
     if not members:
@@ -68,21 +68,22 @@ def ensemble_stats(members: list[dict]) -> dict:
     same = [m for m in members if m["direction"] == direction]
     freqs = [m["frequency_hz"] for m in same if m.get("frequency_hz") is not None]
     onsets = [m["onset_s"] for m in same if m.get("onset_s") is not None]
+    whirl = direction in ("forward", "backward")
     out = {"n": len(members), "direction": direction, "fraction": len(same) / len(members),
            "counts": dict(counts),
-           "frequency_hz": median(freqs) if freqs and direction != "none" else None,
-           "onset_s": median(onsets) if onsets and direction != "none" else None}
-    if len(freqs) >= 2 and direction != "none":
-        out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
-    if direction in ("forward", "backward"):
+           "frequency_hz": median(freqs) if freqs and whirl else None,
+           "onset_s": median(onsets) if onsets and whirl else None}
+    if whirl:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
+        if len(freqs) >= 2:
+            out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
     # members (of any class) in which the DE journal itself whirls: the landing's whirl is the DE's
     # whenever the DE whirls (whirl.landing_whirl_bearing)
     out["de_whirls"] = sum(m["direction"] in ("forward", "backward") and m.get("bearing", "DE") == "DE"
                            for m in members)
     for key in ("end_s", "persistence"):
         vals = [m[key] for m in same if m.get(key) is not None]
-        if vals and direction != "none":
+        if vals and whirl:
             out[key] = median(vals)
     ratios = [m["race_to_rotor"] for m in members if m.get("race_to_rotor") is not None]
     if ratios:

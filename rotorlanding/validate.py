@@ -259,7 +259,7 @@ def report_markdown(result: dict) -> str:
         lines.append(f"| forward whirl frequency at {rpm} rpm [Hz] (ours: {shown}) | {ps:g} | {pe:g} | "
                      f"{_fmt(ours)} | {_fmt(err, 100, 3) + ' %' if err is not None else '-'} |")
     for rpm in fig["speed_rpm"]:
-        e = (ensembles or {}).get(f"forward_{rpm}")
+        e = ensembles.get(f"forward_{rpm}")
         if e and e["direction"] == "forward" and _elsewhere(e):
             lines += ["", f"At {rpm} rpm our whirl is found at the {_elsewhere(e)} "
                       f"journal: the DE journal goes round its clearance in only {e['de_whirls']} of {e['n']} drops. The paper "
