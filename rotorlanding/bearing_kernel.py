@@ -34,6 +34,7 @@ import numpy as np
 from user_forces.axial import axial_force as _axial_force_py
 from user_forces import axial_rub as _axial_rub_mod
 from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.ball_bearing import worn_drag_development as _worn_dev_py
 from user_forces.ball_bearing import worn_drag_torque as _worn_drag_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
 
@@ -46,11 +47,12 @@ _radial_contact = _njit(_radial_contact_py)
 _axial_force = _njit(_axial_force_py)
 _axial_rub = _njit(_axial_rub_py)
 _worn_drag = _njit(_worn_drag_py)
+_worn_dev = _njit(_worn_dev_py)
 
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
  P_YHP, P_C4COT, P_C5, P_WREG2, P_KRIB, P_CRIB, P_ETA, P_COUL, P_MUD, P_CI, P_CO, P_WI, P_WO, P_FACE, P_RUB,
- P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_SIZE) = range(43)
+ P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_TWPHI, P_SIZE) = range(44)
 
 
 def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
@@ -70,6 +72,7 @@ def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
     P[P_KB1], P[P_KB2], P[P_CB] = p.k_b1, p.k_b2, p.c_b
     P[P_DRAG] = 1.0 if eff["ball_drag"] else 0.0
     P[P_TW] = p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0
+    P[P_TWPHI] = p.worn_drag_growth_angle
     P[P_XS:P_WREG2 + 1] = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter,
                                                     p.hp_z, p.hp_y, omega_reg=OMEGA_REG_HP)
     P[P_KRIB], P[P_CRIB] = p.k_rib, p.c_rib
@@ -292,7 +295,7 @@ def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, v
     if P[P_DRAG] != 0.0:
         t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
     if P[P_TW] != 0.0:
-        t_race += _worn_drag(omi, P[P_TW], OMEGA_REG_HP)
+        t_race += _worn_drag(omi, P[P_TW], OMEGA_REG_HP, rphi, P[P_TWPHI])
     # ribbon
     krib = P[P_KRIB]
     crib = P[P_CRIB]
@@ -475,7 +478,9 @@ def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
         Jv[7 + i, 7 + i] -= cb
     if P[P_TW] != 0.0:
         m2 = omi * omi + P[P_WREG2]
-        Jv[6, 6] -= P[P_TW] * P[P_WREG2] / (m2 * math.sqrt(m2))
+        g, dg = _worn_dev(rphi, P[P_TWPHI])
+        Jv[6, 6] -= P[P_TW] * g * P[P_WREG2] / (m2 * math.sqrt(m2))
+        Jq[6, 6] -= P[P_TW] * dg * omi / math.sqrt(m2)
     if P[P_DRAG] != 0.0:
         fr = math.sqrt(by * by + bz * bz)
         _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax, P)

@@ -49,6 +49,9 @@ from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .validate import PAPER, paper_dir
 
+#: s, the onset change between steps h and h/2 that an ensemble may show without its noise
+ONSET_TOL_S = 0.05
+
 CASES = {"fw3000": "forward_whirl_3000rpm.toml", "fw7000": "forward_whirl_landing.toml",
          "fw10000": "forward_whirl_10000rpm.toml", "bw": "backward_whirl_landing.toml"}
 
@@ -185,8 +188,9 @@ def _run_all(jobs, workers):
 
 def converged(a: dict, b: dict) -> bool:
     """Same whirl classes, frequencies within 2 % (or, for ensemble medians, within twice the
-    standard error of their difference when that is larger), forward-case force within 5 %
-    (step h vs h/2)."""
+    standard error of their difference when that is larger), ensemble median onsets within
+    ``ONSET_TOL_S`` (or twice their standard error of the difference), forward-case force within
+    5 % (step h vs h/2)."""
     for c in CASES:
         if c not in a and c not in b:
             continue
@@ -199,6 +203,13 @@ def converged(a: dict, b: dict) -> bool:
         noise = 2.0 * math.hypot(ra.get("frequency_se_hz") or 0.0, rb.get("frequency_se_hz") or 0.0)
         if fa and fb and abs(fa - fb) > max(0.02 * abs(fb), noise):
             return False
+        # the onset of an ensemble (a random variable of the drop once the worn drag develops):
+        # judged like the frequency, against 0.05 s (one whirl-detector window) or twice its noise
+        oa, ob = ra.get("onset_s"), rb.get("onset_s")
+        if ra.get("onset_se_s") is not None or rb.get("onset_se_s") is not None:
+            noise = 2.0 * math.hypot(ra.get("onset_se_s") or 0.0, rb.get("onset_se_s") or 0.0)
+            if oa is not None and ob is not None and abs(oa - ob) > max(ONSET_TOL_S, noise):
+                return False
     fa, fb = a.get("fw7000", {}).get("force_max_n"), b.get("fw7000", {}).get("force_max_n")
     return not (fa and fb and abs(fa - fb) > 0.05 * abs(fb))
 

@@ -57,7 +57,9 @@ def ensemble_stats(members: list[dict]) -> dict:
     members of the whirl class whirled at which bearing (members without ``bearing`` count as DE);
     ``de_whirls``: members of any class whose DE journal whirls.  ``frequency_se_hz``: standard
     error of the median frequency, 1.2533 s / sqrt(k) (s the sample standard deviation of the k >= 2 frequencies; the large-sample
-    rule for a median), the sampling noise against which a step-size change is judged.
+    rule for a median), the sampling noise against which a step-size change is judged;
+    ``onset_se_s`` the same for the onsets, and ``onset_range_s`` their [min, max] (a developing
+    worn drag makes the onset a random variable of the drop: docs/calibration.md, session 7).
     """
     if not members:
         raise ValueError("empty ensemble")
@@ -77,6 +79,10 @@ def ensemble_stats(members: list[dict]) -> dict:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
         if len(freqs) >= 2:
             out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
+        if onsets:
+            out["onset_range_s"] = [min(onsets), max(onsets)]
+        if len(onsets) >= 2:
+            out["onset_se_s"] = 1.2533 * stdev(onsets) / math.sqrt(len(onsets))
     # members (of any class) in which the DE journal itself whirls: the landing's whirl is the DE's
     # whenever the DE whirls (whirl.landing_whirl_bearing)
     out["de_whirls"] = sum(m["direction"] in ("forward", "backward") and m.get("bearing", "DE") == "DE"

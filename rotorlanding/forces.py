@@ -225,6 +225,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     kb1, kb2, cb = p.k_b1, p.k_b2, p.c_b
     drag = eff["ball_drag"]
     worn = p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0
+    worn_phi = p.worn_drag_growth_angle
     hp = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter, p.hp_z, p.hp_y,
                                    omega_reg=OMEGA_REG_HP)
     krib, crib = p.k_rib, p.c_rib
@@ -241,7 +242,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     cl_ax, dm, kcb, kws, khs, cax = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
 
     def f(t, q, v):
-        sy, sz, _, x, ry, rz, _, oy, oz = q
+        sy, sz, _, x, ry, rz, phi_i, oy, oz = q
         vsy, vsz, omega, xd, vry, vrz, omega_i, voy, voz = v
         dy, dz = sy - ry, sz - rz
         dvy, dvz = vsy - vry, vsz - vrz
@@ -260,7 +261,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
         if drag:
             t_race += harris_palmgren_fast(omega_i, math.hypot(by, bz), f_ax, hp)
         if worn:
-            t_race += worn_drag_torque(omega_i, worn, OMEGA_REG_HP)
+            t_race += worn_drag_torque(omega_i, worn, OMEGA_REG_HP, phi_i, worn_phi)
         hy, hz = ribbon_force(oy, oz, voy, voz, krib, crib, eta, v_reg)
         if coulomb and f_ax > 0.0:
             ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)

@@ -157,7 +157,7 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
                 cols["drag_torque_nm"][k] = thp
                 power["ball_drag"][k] += -thp * wi
             if eff["worn_bearing_drag"] and p.worn_drag_torque > 0:
-                tw = worn_drag_torque(wi, p.worn_drag_torque, OMEGA_REG_HP)
+                tw = worn_drag_torque(wi, p.worn_drag_torque, OMEGA_REG_HP, qk[r + 2], p.worn_drag_growth_angle)
                 cols["drag_torque_nm"][k] += tw
                 power["worn_bearing_drag"][k] += -tw * wi
             oy, oz, ovy, ovz = qk[o], qk[o + 1], vk[o], vk[o + 1]

@@ -103,7 +103,7 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
                                                C_s=p.static_load_rating, d_m=p.pitch_diameter, z_hp=p.hp_z,
                                                y_hp=p.hp_y, omega_reg=0.1)
         if eff["worn_bearing_drag"]:
-            f[r + 2] += worn_drag_torque(wr, p.worn_drag_torque, 0.1)
+            f[r + 2] += worn_drag_torque(wr, p.worn_drag_torque, 0.1, q[r + 2], p.worn_drag_growth_angle)
         hy, hz = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], p.k_rib, p.c_rib,
                               p.eta if eff["ribbon_cross_coupling"] else 0.0, c.v_reg)
         f[o] += hy

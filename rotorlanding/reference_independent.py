@@ -142,7 +142,7 @@ def reference_forces(spec, *, rub_v_reg: str = "v_reg_axial"):
                 parts[b.name + ".hp"] = thp
                 f[r + 2] += thp
             if eff["worn_bearing_drag"]:
-                f[r + 2] += worn_drag_torque(om_i, p.worn_drag_torque, 0.1)
+                f[r + 2] += worn_drag_torque(om_i, p.worn_drag_torque, 0.1, q[r + 2], p.worn_drag_growth_angle)
             # ribbon + Coulomb on the outer race
             fr = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], p.k_rib, p.c_rib,
                               p.eta if eff["ribbon_cross_coupling"] else 0.0, c.v_reg)

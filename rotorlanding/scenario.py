@@ -66,6 +66,7 @@ class Bearing:
     hp_z: float                 # Harris-Palmgren z
     hp_y: float                 # Harris-Palmgren exponent y
     worn_drag_torque: float     # N m, Coulomb drag of a worn bearing (effect worn_bearing_drag)
+    worn_drag_growth_angle: float  # rad, race rotation over which that drag develops (0: from the start)
     k_rib: float                # N/m (eq 28)
     c_rib: float                # N s/m
     eta: float                  # -, ribbon cross-coupling factor (eq 29)
@@ -184,6 +185,7 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         pitch_diameter=t.number("pitch_diameter", **pos),
         hp_z=t.number("hp_z", **nn), hp_y=t.number("hp_y", **nn),
         worn_drag_torque=t.number("worn_drag_torque", 0.0, **nn),
+        worn_drag_growth_angle=t.number("worn_drag_growth_angle", 0.0, **nn),
         k_rib=t.number("k_rib", **pos), c_rib=t.number("c_rib", 0.0, **nn),
         eta=t.number("eta", 0.0, **nn), mu_d=t.number("mu_d", 0.0, **nn),
         axial_face=t.boolean("axial_face", False),

@@ -18,10 +18,14 @@ PAPER = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
 
 @pytest.fixture(scope="module")
 def spec():
-    # the worn-bearing drag (off in the paper's forward case) is switched on so its derivative is checked too
+    # the worn-bearing drag (off in the paper's forward case) is switched on so its derivatives are
+    # checked too, still developing (growth angles of the order of the states' race angles, so the
+    # derivative w.r.t. the race angle is large)
     return build_spec(load_scenario(PAPER, ["contact.k_visc=2e4", "bearings.NDE.eta=0.1",
                                             "effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0",
-                                            "bearings.NDE.worn_drag_torque=1.5"]))
+                                            "bearings.NDE.worn_drag_torque=1.5",
+                                            "bearings.DE.worn_drag_growth_angle=0.5",
+                                            "bearings.NDE.worn_drag_growth_angle=0.2"]))
 
 
 def _states(spec, b):
@@ -95,6 +99,14 @@ def test_bearing_kernel_forces_and_jacobian(spec, bname):
         okq, okv = _close(Jq, Nq, 2e-5, 1e-13 * fmax / hq), _close(Jv, Nv, 2e-5, 1e-13 * fmax / hv)
         assert okq.all(), f"{name}: dF/dq differs at {np.argwhere(~okq).tolist()}\n{Jq}\n{Nq}"
         assert okv.all(), f"{name}: dF/dv differs at {np.argwhere(~okv).tolist()}\n{Jv}\n{Nv}"
+        # the race angle enters only through the developing worn drag (row 6), whose derivative is
+        # small against the row's contact terms: checked on its own scale
+        a, c = list(q), list(q)
+        a[6] += 1e-6
+        c[6] -= 1e-6
+        n6 = (np.array(fpy(0.0, a, v)) - np.array(fpy(0.0, c, v))) / 2e-6
+        assert abs(n6[6]) > 0.1 or v[6] == 0.0, name  # a race at rest feels no drag
+        np.testing.assert_allclose(Jq[:, 6], n6, rtol=1e-5, atol=1e-4, err_msg=name)
         if name.startswith("face") and b.params.axial_face:
             # the axial rub and Coulomb friction make the race forces depend on x_ax
             assert np.abs(Nq[[0, 1, 2, 6], 3]).max() > 0 and np.abs(Nv[[7, 8], 3]).max() >= 0
@@ -133,7 +145,9 @@ def test_rotor_loads_jacobian():
 
 
 @pytest.mark.parametrize("sets", [[], ["amb.t_drop=0.01", "amb.drop_axial=true"],
-                                  ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0"]])
+                                  ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0"],
+                                  ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0",
+                                   "bearings.DE.worn_drag_growth_angle=0.3"]])
 def test_exudyn_system_jacobian_analytic_equals_numerical(sets):
     """Same model with and without jacobianUserFunction: Exudyn's ODE2 RHS Jacobians agree at a
     state with radial contact and face contact (checks the sign and scaling convention); with the

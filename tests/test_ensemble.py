@@ -38,6 +38,8 @@ def test_ensemble_stats_majority_and_medians():
     assert s["frequency_hz"] == 50.0 and s["onset_s"] == 0.2
     assert s["v_disp_range_m"] == pytest.approx([-2.5e-4, 2.5e-4])
     assert s["frequency_se_hz"] == pytest.approx(1.2533 * 2.0 / 3 ** 0.5)  # sample sd of 48, 50, 52 is 2
+    assert s["onset_se_s"] == pytest.approx(1.2533 * 0.1 / 3 ** 0.5)  # sample sd of 0.1, 0.2, 0.3 is 0.1
+    assert s["onset_range_s"] == [0.1, 0.3]
     # a tie between calm and whirling drops is reported as whirl, never as calm
     tie = ensemble_stats(m[:1] + m[3:])
     assert tie["direction"] == "backward" and tie["fraction"] == 0.5
@@ -95,3 +97,18 @@ def test_step_convergence_of_ensemble_medians_allows_for_their_noise():
     assert not converged(a, far)
     quiet = {"bw": {"direction": "backward", "frequency_hz": 52.5, "frequency_se_hz": 0.1}}
     assert not converged(dict(a, bw=dict(a["bw"], frequency_se_hz=0.1)), quiet)  # single drops: 2 %
+
+
+def test_step_convergence_of_ensemble_onsets_allows_for_their_noise():
+    """An ensemble's median onset may move by 0.05 s or twice its noise between steps h and h/2."""
+    from rotorlanding.calibrate import ONSET_TOL_S, converged
+
+    base = {"direction": "backward", "frequency_hz": 50.0, "frequency_se_hz": 1.0}
+    a = {"bw": dict(base, onset_s=0.40, onset_se_s=0.10)}
+    assert converged(a, {"bw": dict(base, onset_s=0.65, onset_se_s=0.10)})       # 0.25 s < 2 x 0.141 s
+    assert not converged(a, {"bw": dict(base, onset_s=0.75, onset_se_s=0.10)})   # 0.35 s > 0.283 s
+    quiet = {"bw": dict(base, onset_s=0.40, onset_se_s=0.001)}
+    assert converged(quiet, {"bw": dict(base, onset_s=0.40 + 0.9 * ONSET_TOL_S, onset_se_s=0.001)})
+    assert not converged(quiet, {"bw": dict(base, onset_s=0.40 + 1.5 * ONSET_TOL_S, onset_se_s=0.001)})
+    # single landings (no onset noise known) keep the frequency rule only, as before
+    assert converged({"bw": dict(base, onset_s=0.1)}, {"bw": dict(base, onset_s=0.5)})

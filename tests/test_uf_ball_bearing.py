@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_development, worn_drag_torque
 
 HP = dict(contact_angle_deg=40.0, C_s=45000.0, d_m=0.085, z_hp=0.001, y_hp=0.33,
           omega_reg=0.1)
@@ -88,3 +88,28 @@ def test_worn_drag_torque_is_a_regularised_coulomb_torque():
         assert worn_drag_torque(w, 1.7) == -worn_drag_torque(-w, 1.7)
         assert worn_drag_torque(w, 1.7) * w < 0.0
     assert worn_drag_torque(500.0, 0.0) == 0.0
+
+
+def test_worn_drag_development_closed_form_and_derivative():
+    """g = 1 - exp(-|phi| / phi_c): 0 at the landing, 1 - 1/e after phi_c, -> 1; even in phi;
+    g = 1 for phi_c = 0 (drag present from the start); dg/dphi against a central difference."""
+    assert worn_drag_development(0.0, 60.0)[0] == 0.0
+    assert worn_drag_development(60.0, 60.0)[0] == pytest.approx(1.0 - math.exp(-1.0), rel=1e-14)
+    assert worn_drag_development(-60.0, 60.0)[0] == worn_drag_development(60.0, 60.0)[0]
+    assert worn_drag_development(6000.0, 60.0)[0] == 1.0
+    assert worn_drag_development(123.0, 0.0) == (1.0, 0.0)
+    for phi in (-80.0, -1.0, 0.3, 45.0, 300.0):
+        h = 1e-6 * max(1.0, abs(phi))
+        fd = (worn_drag_development(phi + h, 60.0)[0] - worn_drag_development(phi - h, 60.0)[0]) / (2 * h)
+        assert worn_drag_development(phi, 60.0)[1] == pytest.approx(fd, rel=1e-6)
+
+
+def test_developing_worn_drag_is_the_developed_share_of_the_full_torque():
+    """T(omega, phi) = g(phi) T(omega) for any speed; still opposes the spin; the default
+    (growth_angle 0) is the torque present from the start."""
+    for w in (733.0, -20.0, 0.05):
+        for phi in (0.0, 10.0, 60.0, 700.0):
+            g = worn_drag_development(phi, 60.0)[0]
+            assert worn_drag_torque(w, 2.5, 0.1, phi, 60.0) == pytest.approx(g * worn_drag_torque(w, 2.5, 0.1), rel=1e-14)
+            assert worn_drag_torque(w, 2.5, 0.1, phi, 60.0) * w <= 0.0
+        assert worn_drag_torque(w, 2.5, 0.1, 50.0, 0.0) == worn_drag_torque(w, 2.5, 0.1)

@@ -33,7 +33,7 @@ T ~ 0.05 N m) keeps the race spin equation only mildly stiff (time constant ~1e-
 1e-4..1e-3 kg m^2).
 """
 
-from math import cos, sin, sqrt, radians
+from math import cos, exp, sin, sqrt, radians
 
 OMEGA_REG_DEFAULT = 0.1
 
@@ -49,20 +49,43 @@ def ball_force(dy, dz, k_b1, k_b2, dvy=0.0, dvz=0.0, c_b=0.0):
     return (-k * dy - c_b * dvy, -k * dz - c_b * dvz)
 
 
-def worn_drag_torque(omega_race_rel, torque, omega_reg=OMEGA_REG_DEFAULT):
+def worn_drag_development(angle, growth_angle):
+    """Developed share g of the worn drag and dg/d(angle) after the race has turned ``angle`` [rad].
+
+    g = 1 - exp(-|angle| / growth_angle) for growth_angle > 0 [rad]; g = 1 (drag present from the
+    start) for growth_angle = 0. Why the race angle: the drag of a worn bearing rises as the bearing
+    heats (debris and spall friction heat the inner ring, its thermal growth takes up the internal
+    clearance, the ball preload and the friction rise: docs/paper_corrections.md, "worn bearing").
+    Over a landing (about 1 s, far below the ring's thermal time constant of minutes) the heat the
+    drag itself has made is its work, about T |angle|, so the developed share follows the turned
+    angle, and saturates at the worn level as the clearance is used up.
+    """
+    if growth_angle <= 0.0:
+        return 1.0, 0.0
+    e = exp(-abs(angle) / growth_angle)
+    s = 1.0 if angle >= 0.0 else -1.0
+    return 1.0 - e, s * e / growth_angle
+
+
+def worn_drag_torque(omega_race_rel, torque, omega_reg=OMEGA_REG_DEFAULT, angle=0.0, growth_angle=0.0):
     """Drag torque of a worn catcher bearing on the inner race [N m] (not in the paper).
 
     A bearing damaged by repeated landings (spalled races, debris, a worn cage) has a friction
     torque several times that of a new one, and most of it does not scale with load: we model
     it as a speed-independent Coulomb torque ``torque`` [N m] (>= 0), regularised like eq 23,
 
-        T = -torque * omega / sqrt(omega^2 + omega_reg^2).
+        T = -torque * g(angle) * omega / sqrt(omega^2 + omega_reg^2),
+
+    with g the developed share after the race has turned ``angle`` [rad] since the landing
+    (:func:`worn_drag_development`; g = 1 when ``growth_angle`` = 0, the drag present from the start).
 
     It is the missing effect of the backward-whirl landing (docs/paper_corrections.md, "worn
     bearing"): with it the race cannot keep rolling when the landed load dips, the sleeve keeps
     slipping, and the slip friction feeds a backward whirl.
     """
-    return -torque * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + omega_reg * omega_reg)
+    # g inline (not via worn_drag_development) so that numba compiles this law unchanged
+    g = 1.0 - exp(-abs(angle) / growth_angle) if growth_angle > 0.0 else 1.0
+    return -torque * g * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + omega_reg * omega_reg)
 
 
 def harris_palmgren_torque(omega_race_rel, f_radial, f_axial, *, contact_angle_deg, C_s, d_m,
