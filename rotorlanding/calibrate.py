@@ -241,6 +241,8 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
             r["converged"] = converged(results[r["design"]], half[r["design"]])
             r["score_half_step"] = score(half[r["design"]], cases)[0]
             r.update({f"{c}_hz_half_step": half[r["design"]][c].get("frequency_hz") for c in cases})
+            if "bw" in cases:
+                r["bw_onset_s_half_step"] = half[r["design"]]["bw"].get("onset_s")
         if any(r["converged"] for r in top):
             break
     # converged designs first, then unchecked, then unconverged; a checked design's score is the

@@ -126,3 +126,18 @@ def test_validation_judges_a_case_on_its_ensemble_not_its_centred_drop():
     assert judged["no-whirl: no sustained whirl"]["pass"]
     assert not judged["no-whirl: inner race reaches rotor speed"]["pass"]
     assert judged["no-whirl: inner race reaches rotor speed"]["ours"] == 0.9
+
+
+def test_backward_onset_note_reads_the_calibrated_growth_angle():
+    """The report says the onset row is a calibrated reproduction exactly when the paper's backward
+    scenario has a developing worn drag, with the angle from that file."""
+    import rotorlanding.validate as v
+    from rotorlanding.scenario import load_scenario
+
+    sc = load_scenario(v.paper_dir() / v.CASES["backward_whirl"][0])
+    grow = sc.bearings["DE"].worn_drag_growth_angle
+    note = v._onset_note()
+    if grow > 0:
+        assert f"growth angle {grow:.3g} rad" in note and "calibrated" in note
+    else:
+        assert note == ""
