@@ -1,6 +1,7 @@
 """Calibration against the paper: scoring rule and a tiny end-to-end run."""
 
 import csv
+from pathlib import Path
 
 import pytest
 
@@ -119,3 +120,14 @@ def test_ensemble_option_applies_to_every_case(monkeypatch, tmp_path):
     assert res["bw"]["direction"] == "backward" and res["bw"]["fraction"] == pytest.approx(2 / 3)
     total, parts = cal.score(res, ["fw7000", "bw"])
     assert parts["force"] == pytest.approx(0.0) and parts["fw7000"] == pytest.approx(0.0)
+
+
+def test_worn_bearing_calibration_scores_the_drops_validate_judges():
+    """The report says the backward onset was calibrated on its own ensemble's drops: the space
+    file's ensemble must be validate's backward ensemble (same size, hence the same drop points)."""
+    from rotorlanding.calibrate import load_space
+    from rotorlanding.validate import ENSEMBLE
+
+    space = load_space(Path(__file__).resolve().parents[1] / "scenarios" / "calibration" / "worn_bearing.toml")
+    assert space["ensemble"] == ENSEMBLE["backward_whirl"]
+    assert space["cases"] == ["bw"]
