@@ -183,7 +183,7 @@ def cmd_coastdown(args) -> int:
 
 
 def cmd_validate(args) -> int:
-    from .validate import validate
+    from .validate import counts_line, check_line, validate
 
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
@@ -192,8 +192,8 @@ def cmd_validate(args) -> int:
     res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig)
     ev = res["evaluation"]
     for c in ev["checks"]:
-        print(f"{'PASS' if c['pass'] else 'FAIL'}  {c['check']}: {c.get('ours')}  ({c['rule']})")
-    print(f"{ev['passed']} of {ev['total']} acceptance checks pass; report: {args.out}/validation.md")
+        print(check_line(c))
+    print(counts_line(ev).replace("**", "") + f" Report: {args.out}/validation.md")
     return 0
 
 

@@ -36,11 +36,15 @@ def member_result(summary: dict) -> dict:
     only that one whirls), where it was found, the DE vertical displacement and force ranges, and
     the DE inner race's speed over the rotor's at the end (``race_to_rotor``)."""
     w = landing_whirl(summary["whirl"])
-    de = summary["bearings"].get("DE") or next(iter(summary["bearings"].values()))  # else the first bearing
+    name = "DE" if "DE" in summary["bearings"] else next(iter(summary["bearings"]))  # else the first bearing
+    de = summary["bearings"][name]
+    de_w = (summary["whirl"].get("per_bearing") or {}).get(name) or {}
     rotor_rpm = summary["speeds"]["final_rotor_rpm"]
     return {"direction": w["direction"], "bearing": w["bearing"],
             "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
             "end_s": w.get("end_s"), "persistence": w.get("persistence"),
+            # the DE journal's own whirl: the paper measured its frequencies there
+            "de_direction": de_w.get("direction", "none"), "de_frequency_hz": de_w.get("frequency_hz"),
             "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"],
             # undefined once the rotor has (nearly) stopped
             "race_to_rotor": de["final_race_speed_rpm"] / rotor_rpm if rotor_rpm > 1.0 else None}
@@ -78,11 +82,11 @@ def ensemble_stats(members: list[dict]) -> dict:
     if whirl:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
         if len(freqs) >= 2:
-            out["frequency_se_hz"] = 1.2533 * stdev(freqs) / math.sqrt(len(freqs))
+            out["frequency_se_hz"] = _median_se(freqs)
         if onsets:
             out["onset_range_s"] = [min(onsets), max(onsets)]
         if len(onsets) >= 2:
-            out["onset_se_s"] = 1.2533 * stdev(onsets) / math.sqrt(len(onsets))
+            out["onset_se_s"] = _median_se(onsets)
     # members (of any class) in which the DE journal itself whirls: the landing's whirl is the DE's
     # whenever the DE whirls (whirl.landing_whirl_bearing)
     out["de_whirls"] = sum(m["direction"] in ("forward", "backward") and m.get("bearing", "DE") == "DE"
@@ -94,8 +98,27 @@ def ensemble_stats(members: list[dict]) -> dict:
     ratios = [m["race_to_rotor"] for m in members if m.get("race_to_rotor") is not None]
     if ratios:
         out["race_to_rotor"] = median(ratios)
-    for key in ("v_disp_range_m", "v_force_range_n"):
+    for key, unit in (("v_disp_range_m", "_m"), ("v_force_range_n", "_n")):
         vals = [m[key] for m in members if m.get(key) is not None]
         if vals:
             out[key] = [median(v[0] for v in vals), median(v[1] for v in vals)]
+            if len(vals) >= 2:
+                out[key.removesuffix(unit) + "_se" + unit] = [_median_se([v[i] for v in vals]) for i in (0, 1)]
+    # the DE journal's own whirl over all members (the paper's measuring node): its class counts and
+    # the median frequency of the members whose DE journal whirls in the DE majority class
+    de = [m for m in members if "de_direction" in m]
+    if de:
+        de_counts = Counter(m["de_direction"] for m in de)
+        de_top = max(de_counts.values())
+        de_dir = next((c for c in ("backward", "forward") if de_counts.get(c) == de_top),
+                      max(de_counts, key=de_counts.get))
+        f_de = [m["de_frequency_hz"] for m in de if m["de_direction"] == de_dir and m.get("de_frequency_hz")]
+        out["de"] = {"counts": dict(de_counts), "direction": de_dir,
+                     "frequency_hz": median(f_de) if f_de and de_dir != "none" else None,
+                     "frequency_se_hz": _median_se(f_de) if len(f_de) >= 2 and de_dir != "none" else None}
     return out
+
+
+def _median_se(vals) -> float:
+    """Standard error of the median of ``vals``: 1.2533 s / sqrt(k), the large-sample rule."""
+    return 1.2533 * stdev(vals) / math.sqrt(len(vals))

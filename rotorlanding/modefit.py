@@ -72,6 +72,11 @@ def load_space(path) -> dict:
             raise InputError("targets.frequencies_hz", freqs, f"must be a list of {len(speeds)} frequencies > 0 Hz")
         direction = tg.string("direction", "forward")
         max_ratio = tg.number("max_mode_to_spin", positive=True) if tg.has("max_mode_to_spin") else math.inf
+        held = tg.raw("predict_speeds_rpm") if tg.has("predict_speeds_rpm") else []
+        if not (isinstance(held, list) and all(isinstance(s, (int, float)) and s >= 0 and s not in speeds
+                                               for s in held)):
+            raise InputError("targets.predict_speeds_rpm", held,
+                             "must be a list of speeds >= 0 rpm that are not among speeds_rpm")
         if direction not in ("forward", "backward"):
             raise InputError("targets.direction", direction, "must be 'forward' or 'backward'")
         tg.finish()
@@ -92,6 +97,7 @@ def load_space(path) -> dict:
             raise InputError(f"ranges.{k}", ranges[k], f"key not in {rotor_file.name}: {err.allowed}").with_file(
                 str(path)) from None
     space.update(speeds_rpm=[float(s) for s in speeds], frequencies_hz=[float(f) for f in freqs],
+                 predict_speeds_rpm=[float(s) for s in held],
                  direction=direction, max_mode_to_spin=max_ratio, ranges={k: (float(r["min"]), float(r["max"])) for k, r in ranges.items()})
     space["rotor_data"] = rotor_data
     return space
@@ -136,12 +142,17 @@ def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
 
     sp = load_space(space_path)
     keys = list(sp["ranges"])
+    n_fit = len(sp["speeds_rpm"])
+    speeds = sp["speeds_rpm"] + sp["predict_speeds_rpm"]
     targets = np.array(sp["frequencies_hz"]) / sp["lock_ratio"]
-    spin_hz = np.maximum(np.array(sp["speeds_rpm"]) / 60.0, 1e-9)
+    # a held-out speed has no measured frequency: the mode is followed there from the fitted ones
+    # (nearest to the linear trend of the targets over speed), only to pick the branch
+    targets = np.concatenate([targets, _trend(sp["speeds_rpm"], targets, sp["predict_speeds_rpm"])])
+    spin_hz = np.maximum(np.array(speeds) / 60.0, 1e-9)
 
     def modes_of(x):
         data = rotor_with(sp["rotor_data"], dict(zip(keys, x)), sp["support_stiffness"])
-        return np.array(matched_modes(data, sp["speeds_rpm"], targets, sp["direction"]))
+        return np.array(matched_modes(data, speeds, targets, sp["direction"]))
 
     def objective(x):
         try:
@@ -150,8 +161,11 @@ def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
             return 1e3  # a geometry the rotor model rejects
         if not np.all(np.isfinite(f)):
             return 1e3
+        # the spin constraint is physics (face friction drives a forward whirl only below the spin),
+        # not a measured number: it holds at the held-out speeds too
         excess = np.where(spin_hz > 1e-6, np.maximum(f / (spin_hz * sp["max_mode_to_spin"]) - 1.0, 0.0), 0.0)
-        return float(np.sum(((f - targets) / targets) ** 2) + 100.0 * np.sum(excess))
+        fit = (f[:n_fit] - targets[:n_fit]) / targets[:n_fit]
+        return float(np.sum(fit ** 2) + 100.0 * np.sum(excess))
 
     from .sweep import limit_blas_threads
 
@@ -170,10 +184,13 @@ def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
         "space": str(space_path), "rotor": str(sp["rotor"]), "values": best,
         "support_stiffness_n_m": sp["support_stiffness"], "lock_ratio": sp["lock_ratio"],
         "speeds_rpm": sp["speeds_rpm"], "target_whirl_hz": sp["frequencies_hz"],
-        "mode_hz": [float(x) for x in f], "predicted_whirl_hz": [float(x * sp["lock_ratio"]) for x in f],
+        "mode_hz": [float(x) for x in f[:n_fit]], "predicted_whirl_hz": [float(x * sp["lock_ratio"]) for x in f[:n_fit]],
         "max_mode_to_spin": sp["max_mode_to_spin"] if math.isfinite(sp["max_mode_to_spin"]) else None,
-        "mode_to_spin": [float(x / s) for x, s in zip(f, spin_hz)],
+        "mode_to_spin": [float(x / s) for x, s in zip(f[:n_fit], spin_hz)],
         "relative_error": [float(x * sp["lock_ratio"] / t - 1) for x, t in zip(f, sp["frequencies_hz"])],
+        "held_out": [{"speed_rpm": s, "mode_hz": float(x), "predicted_whirl_hz": float(x * sp["lock_ratio"]),
+                      "mode_to_spin": float(x / h)}
+                     for s, x, h in zip(sp["predict_speeds_rpm"], f[n_fit:], spin_hz[n_fit:])],
         "objective": final_objective, "evaluations": int(res.nfev),
     }
     if out_dir is not None:
@@ -193,7 +210,19 @@ def format_result(r: dict) -> str:
     for s, m, p, t, e in zip(r["speeds_rpm"], r["mode_hz"], r["predicted_whirl_hz"], r["target_whirl_hz"],
                              r["relative_error"]):
         lines.append(f" {s:9.0f} {m:8.2f} {p:19.2f} {t:10.2f} {e:+6.1%}")
+    for h in r.get("held_out", []):
+        lines.append(f" {h['speed_rpm']:9.0f} {h['mode_hz']:8.2f} {h['predicted_whirl_hz']:19.2f}  (held out: a prediction)")
     return "\n".join(lines) + "\n"
+
+
+def _trend(speeds, values, at) -> np.ndarray:
+    """Linear trend of ``values`` over ``speeds`` evaluated ``at`` (the value itself for one speed)."""
+    if not at:
+        return np.zeros(0)
+    if len(speeds) == 1:
+        return np.full(len(at), float(values[0]))
+    slope, icpt = np.polyfit(speeds, values, 1)
+    return slope * np.asarray(at) + icpt
 
 
 __all__ = ["load_space", "fit_modes", "matched_modes", "rotor_with", "round_sig", "format_result"]

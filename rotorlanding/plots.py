@@ -50,28 +50,43 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     time_histories(lambda b: [(series[f"{b}_z_m"] * 1e3, "vertical z"), (series[f"{b}_y_m"] * 1e3, "horizontal y")],
                    "{b} journal [mm]", "journal displacement (dotted: +/- radial clearance)", "displacements.png",
                    band=lambda b: bearings[b] * 1e3)
-    time_histories(lambda b: [(-(series[f"{b}_contact_force_z_n"] + series[f"{b}_rub_force_z_n"]) * 1e-3,
-                               "vertical (on the race)"),
-                              (-(series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"]) * 1e-3,
-                               "horizontal (on the race)")],
-                   "{b} contact force [kN]", "sleeve/inner-race contact force", "forces.png")
+    # the force the race exerts on the rotor, positive up: the sign of the paper's Figs. 12, 22, 30
+    # and Tables 1-2 (a rotor resting on its catcher bearing is pushed up)
+    time_histories(lambda b: [((series[f"{b}_contact_force_z_n"] + series[f"{b}_rub_force_z_n"]) * 1e-3,
+                               "vertical z (on the rotor)"),
+                              ((series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"]) * 1e-3,
+                               "horizontal y (on the rotor)")],
+                   "{b} force on the rotor [kN]", "contact force on the rotor (inner race on sleeve, with face rub)",
+                   "forces.png")
 
-    fig, axes = plt.subplots(1, len(names), figsize=(5 * len(names), 5), squeeze=False)
-    for ax, b in zip(axes[0], names):
+    # top: the journal relative to the inner race, which the clearance bounds (up to the Hertz
+    # penetration); bottom: the absolute journal orbit, which also carries the race's excursion
+    # on the ball set and ribbon, so it runs past the clearance under load
+    fig, axes = plt.subplots(2, len(names), figsize=(5 * len(names), 10), squeeze=False)
+    th = np.linspace(0, 2 * np.pi, 200)
+    for col, b in enumerate(names):
         c = bearings[b] * 1e3
-        th = np.linspace(0, 2 * np.pi, 200)
-        ax.plot(c * np.cos(th), c * np.sin(th), "b-", lw=1.2, label="clearance circle")
-        ax.plot(series[f"{b}_y_m"] * 1e3, series[f"{b}_z_m"] * 1e3, "k-", lw=0.5, label="orbit")
-        ax.set_aspect("equal")
-        ax.set_xlabel("y (horizontal) [mm]")
-        ax.set_ylabel("z (vertical) [mm]")
         w = summary["whirl"]["per_bearing"].get(b, {})
-        txt = w.get("direction", "none")
-        if w.get("frequency_hz"):
-            txt += f" whirl {w['frequency_hz']:.1f} Hz"
-        ax.set_title(f"{b} orbit: {txt}")
-        ax.grid(alpha=0.3)
-        ax.legend(loc="upper right", fontsize=8)
+        txt = w.get("direction", "none") + (f" whirl {w['frequency_hz']:.1f} Hz" if w.get("frequency_hz") else "")
+        rel = f"{b}_race_y_m" in series
+        views = [("relative to the inner race", series[f"{b}_y_m"] - series[f"{b}_race_y_m"],
+                  series[f"{b}_z_m"] - series[f"{b}_race_z_m"])] if rel else []
+        views.append(("absolute (housing frame; includes race, ball-set and ribbon deflection)",
+                      series[f"{b}_y_m"], series[f"{b}_z_m"]))
+        for row in range(2):
+            ax = axes[row, col]
+            if row >= len(views):
+                ax.set_visible(False)
+                continue
+            label, yy, zz = views[row]
+            ax.plot(c * np.cos(th), c * np.sin(th), "b-", lw=1.2, label=f"radial clearance {c:.3g} mm")
+            ax.plot(yy * 1e3, zz * 1e3, "k-", lw=0.5, label="journal orbit")
+            ax.set_aspect("equal")
+            ax.set_xlabel("y (horizontal) [mm]")
+            ax.set_ylabel("z (vertical) [mm]")
+            ax.set_title(f"{b} journal {label}:\n{txt}", fontsize=9)
+            ax.grid(alpha=0.3)
+            ax.legend(loc="upper right", fontsize=8)
     fig.tight_layout()
     files.append(out / "orbits.png")
     fig.savefig(files[-1], dpi=110)

@@ -178,6 +178,8 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
         for key, val in cols.items():
             out[pre + key] = val
         out[pre + "y_m"], out[pre + "z_m"] = q[:, s], q[:, s + 1]
+        # the inner race's centre: the journal's orbit relative to it is what the clearance bounds
+        out[pre + "race_y_m"], out[pre + "race_z_m"] = q[:, r], q[:, r + 1]
         out[pre + "race_speed_rpm"] = v[:, r + 2] * 30 / math.pi
     out["rotor_speed_rpm"] = omega * 30 / math.pi
     out["axial_position_m"] = x

@@ -112,3 +112,28 @@ def test_step_convergence_of_ensemble_onsets_allows_for_their_noise():
     assert not converged(quiet, {"bw": dict(base, onset_s=0.40 + 1.5 * ONSET_TOL_S, onset_se_s=0.001)})
     # single landings (no onset noise known) keep the frequency rule only, as before
     assert converged({"bw": dict(base, onset_s=0.1)}, {"bw": dict(base, onset_s=0.5)})
+
+
+def test_ensemble_reports_the_de_journal_and_standard_errors_of_the_ranges():
+    """The DE journal's own class and frequency (the paper's measuring node) beside the landing's,
+    and the standard error of the median displacement and force peaks (1.2533 s / sqrt(k))."""
+    import math
+    from statistics import stdev
+
+    from rotorlanding.ensemble import ensemble_stats
+
+    def m(direction, de, f, peak):
+        return {"direction": direction, "frequency_hz": f, "onset_s": 0.1, "de_direction": de,
+                "de_frequency_hz": f if de != "none" else None, "v_disp_range_m": [-3e-4, peak],
+                "v_force_range_n": [-1e3, 5e3]}
+
+    peaks = [2.0e-4, 2.2e-4, 2.4e-4, 2.6e-4]
+    members = [m("forward", "none", 46.0, peaks[0]), m("forward", "none", 46.2, peaks[1]),
+               m("forward", "forward", 45.0, peaks[2]), m("forward", "none", 46.4, peaks[3])]
+    st = ensemble_stats(members)
+    assert st["direction"] == "forward" and st["de"]["counts"] == {"none": 3, "forward": 1}
+    assert st["de"]["direction"] == "none" and st["de"]["frequency_hz"] is None
+    assert st["v_disp_range_se_m"][1] == pytest.approx(1.2533 * stdev(peaks) / math.sqrt(4))
+    assert st["v_force_range_se_n"] == [0.0, 0.0]
+    two = ensemble_stats(members[2:3] * 3 + members[:1])
+    assert two["de"]["direction"] == "forward" and two["de"]["frequency_hz"] == pytest.approx(45.0)

@@ -101,6 +101,35 @@ def test_mode_is_kept_below_the_allowed_fraction_of_spin(tmp_path):
     assert res["values"]["rotor.disks.0.outer_diameter"] > 0.21
 
 
+def test_held_out_speed_is_predicted_and_keeps_the_spin_constraint(tmp_path):
+    """Fitted on 0 and 6000 rpm only, the rotor predicts the 3000 rpm mode the true geometry has
+    (an independent modal computation); a held-out speed carries no target, but the spin
+    constraint (physics, not data) holds there."""
+    data = load_toml(_space(tmp_path, "[1.0, 1.0]").parent / "rotor.toml")
+    true = rotor_with(data, {"rotor.disks.0.outer_diameter": 0.23}, 1e8)
+    modes = matched_modes(true, [0.0, 3000.0, 6000.0], [50.0, 55.0, 60.0])
+    targets = [round(float(0.95 * f), 6) for f in (modes[0], modes[2])]
+    p = _space(tmp_path, str(targets)).read_text().replace("[targets]", "[targets]\npredict_speeds_rpm = [3000.0]")
+    (tmp_path / "space.toml").write_text(p)
+    res = fit_modes(tmp_path / "space.toml")
+    (held,) = res["held_out"]
+    assert held["speed_rpm"] == 3000.0 and held["mode_hz"] == pytest.approx(modes[1], rel=3e-3)
+    assert len(res["mode_hz"]) == len(res["relative_error"]) == 2  # the held-out speed is not in the fit
+    # only 0 rpm fitted, 6000 rpm held out with at most 0.85 x spin: the fit must respect it there
+    low = _space(tmp_path, f"[{targets[0]}]").read_text().replace("speeds_rpm = [0.0, 6000.0]", "speeds_rpm = [0.0]")
+    (tmp_path / "space.toml").write_text(low.replace("[targets]", "[targets]\npredict_speeds_rpm = [6000.0]\n"
+                                                                  "max_mode_to_spin = 0.85"))
+    res = fit_modes(tmp_path / "space.toml")
+    assert res["held_out"][0]["mode_to_spin"] <= 0.8505
+
+
+def test_held_out_speed_must_not_be_a_fitted_one(tmp_path):
+    p = _space(tmp_path, "[40.0, 50.0]")
+    p.write_text(p.read_text().replace("[targets]", "[targets]\npredict_speeds_rpm = [6000.0]"))
+    with pytest.raises(InputError, match="targets.predict_speeds_rpm"):
+        load_space(p)
+
+
 @pytest.mark.parametrize("extra, ranges, field", [
     ("", '"rotor.disks.0.outer_diametr" = {min = 0.1, max = 0.3}', "ranges.rotor.disks.0.outer_diametr"),
     ("", '"rotor.disks.0.outer_diameter" = {min = 0.3, max = 0.1}', "ranges.rotor.disks.0.outer_diameter"),
