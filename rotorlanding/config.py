@@ -63,6 +63,20 @@ def parse_value(text: str):
         return text
 
 
+def get_dotted(data: dict, dotted_key: str):
+    """``data['a']['b']`` for ``'a.b'`` (a numeric part indexes an array of tables); unknown keys
+    are an error."""
+    node = data
+    for i, part in enumerate(dotted_key.split(".")):
+        if isinstance(node, list) and part.isdigit() and int(part) < len(node):
+            node = node[int(part)]
+        elif isinstance(node, dict) and part in node:
+            node = node[part]
+        else:
+            raise InputError(dotted_key, None, f"no such key '{'.'.join(dotted_key.split('.')[: i + 1])}' in the input")
+    return node
+
+
 def set_dotted(data: dict, dotted_key: str, value, *, must_exist: bool = True, create_leaf: bool = False) -> None:
     """Set ``data['a']['b'] = value`` for ``'a.b'``; unknown keys are an error when ``must_exist``
     (with ``create_leaf`` a missing last key inside an existing table is created; the schema

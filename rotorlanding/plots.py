@@ -71,7 +71,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
         rel = f"{b}_race_y_m" in series
         views = [("relative to the inner race", series[f"{b}_y_m"] - series[f"{b}_race_y_m"],
                   series[f"{b}_z_m"] - series[f"{b}_race_z_m"])] if rel else []
-        views.append(("absolute (housing frame; includes race, ball-set and ribbon deflection)",
+        views.append(("absolute (housing frame;\nincludes race, ball-set and ribbon deflection)",
                       series[f"{b}_y_m"], series[f"{b}_z_m"]))
         for row in range(2):
             ax = axes[row, col]

@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .config import Table, load_toml, parse_value, set_dotted, deep_merge
+from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted
 from .errors import InputError
 from .rotor import Rotor, rotor_from_dict
 
@@ -142,6 +142,52 @@ class Solver:
     newton_absolute_tolerance: float = 1e-8
 
 
+@dataclass(frozen=True)
+class Bound:
+    """The plausible physical range of one rig parameter and where that range comes from
+    (``[bounds]`` in a rig or rotor file: ``"bearings.DE.eta" = {min = .., max = .., source = ".."}``).
+    A calibrated parameter must lie inside its bound and not on it (``validate``)."""
+    min: float
+    max: float
+    source: str
+    log: bool = False   # a scale parameter: positions are measured on a log axis
+
+    def position(self, value: float) -> float:
+        """Where ``value`` lies in the range: 0 at min, 1 at max (on a log axis for ``log``)."""
+        if self.log:
+            return math.log(value / self.min) / math.log(self.max / self.min) if value > 0 else -math.inf
+        return (value - self.min) / (self.max - self.min)
+
+
+def _bounds(data: dict) -> dict[str, Bound]:
+    raw = data.get("bounds", {})
+    if not isinstance(raw, dict):
+        raise InputError("bounds", raw, "must be a table of \"dotted.key\" = {min, max, source}")
+    out = {}
+    for key, b in raw.items():
+        field_ = f"bounds.{key}"
+        if not (isinstance(b, dict) and {"min", "max", "source"} <= set(b) <= {"min", "max", "source", "log"}):
+            raise InputError(field_, b, "must be {min = a, max = b, source = \"where the range comes from\"} "
+                                        "(optional log = true)")
+        lo, hi, src, log = b["min"], b["max"], b["source"], b.get("log", False)
+        if not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in (lo, hi)) \
+                or not lo < hi or (log is True and not lo > 0) or not isinstance(log, bool):
+            raise InputError(field_, b, "needs finite numbers min < max (min > 0 with log = true)")
+        if not (isinstance(src, str) and src.strip()):
+            raise InputError(field_ + ".source", src, "must name the source of the range")
+        try:
+            value = get_dotted(data, key)
+        except InputError:
+            # a bound of a parameter this scenario does not have (e.g. a rotor overlaid with fewer
+            # disks): it bounds nothing here; tests/test_rig_bounds.py checks every bound of the
+            # rig files resolves in the paper scenarios, so a misspelt key does not go unseen
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputError(field_, key, f"names a non-numeric parameter ({value!r})")
+        out[key] = Bound(float(lo), float(hi), src.strip(), log)
+    return out
+
+
 @dataclass
 class Scenario:
     name: str
@@ -158,6 +204,8 @@ class Scenario:
     solver: Solver
     raw: dict = field(repr=False, default_factory=dict)  # the fully resolved input tables
     source: str | None = None
+    #: plausible physical range of rig parameters, dotted key -> Bound (``[bounds]`` of the rig files)
+    bounds: dict[str, "Bound"] = field(default_factory=dict)
 
     @property
     def omega0(self) -> float:
@@ -225,6 +273,8 @@ def _scenario(data: dict, source, name) -> Scenario:
         raise InputError("rotor.reduction", None, "missing table: the landing model needs boundary_stations and modes")
     top = Table(data, "")
     top.raw("rotor")
+    bounds = _bounds(data)
+    top.raw("bounds", {})
     title = top.string("name", name or (Path(source).stem if source else "scenario"))
 
     bt = top.table("bearings")
@@ -319,7 +369,7 @@ def _scenario(data: dict, source, name) -> Scenario:
         raise InputError("solver.output_period", solver.output_period, f"must be >= solver.step ({solver.step} s)")
     top.finish()
     return Scenario(title, rotor, bearings, contact, axial, amb, spin, unbalance, effects, speed, t_end, solver,
-                    raw=data, source=source)
+                    raw=data, source=source, bounds=bounds)
 
 
 def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scenario:

@@ -210,20 +210,25 @@ def _de_whirl(w: dict) -> tuple[str, float | None, float | None, str]:
     return w.get("de_direction", "none"), w.get("de_frequency_hz"), None, "centred drop"
 
 
+#: where a table entry's number sits in the ensemble statistics: (value key, index or None, s.e. key)
+_STAT = {"v_disp_max_m": ("v_disp_range_m", 1, "v_disp_range_se_m"),
+         "v_disp_min_m": ("v_disp_range_m", 0, "v_disp_range_se_m"),
+         "v_force_max_n": ("v_force_range_n", 1, "v_force_range_se_n"),
+         "v_force_min_n": ("v_force_range_n", 0, "v_force_range_se_n"),
+         "onset_s": ("onset_s", None, "onset_se_s"), "frequency_hz": ("frequency_hz", None, "frequency_se_hz")}
+
+
 def _value(w: dict, table: str, key) -> tuple[float | None, float | None]:
-    """Our number for a table entry and its standard error (None where the ensemble gives none)."""
+    """Our number for a table entry and its standard error (None where the ensemble gives none).
+    Table 1's onset and frequency are those of the backward whirl; Fig. 39's the DE journal's."""
     if table == "fig39":
         d, f, se, _ = _de_whirl(w)
         return (f, se) if d == "forward" else (None, None)
-    if key in ("onset_s", "frequency_hz"):
-        if w["direction"] != "backward":
-            return None, None
-        return w[key], w.get(key.replace("_s", "_se_s").replace("_hz", "_se_hz"))
-    rng, i = ("v_disp_range", 1 if key.endswith("max_m") else 0) if "disp" in key else \
-        ("v_force_range", 1 if key.endswith("max_n") else 0)
-    unit = "_m" if rng == "v_disp_range" else "_n"
-    se = w.get(rng + "_se" + unit)
-    return w[rng + unit][i], (se[i] if se else None)
+    name, i, se_name = _STAT[key]
+    if i is None and w["direction"] != "backward":
+        return None, None
+    v, se = w.get(name), w.get(se_name)
+    return (v, se) if i is None else (v[i], se[i] if se else None)
 
 
 def provenance() -> dict:
@@ -259,7 +264,7 @@ def _class_verdict(counts: dict, n: int, want, share: float = CLASS_SHARE) -> di
             "se": math.sqrt(n * p * (1 - p)), "margin_unit": "drops"}
 
 
-def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
+def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | None = None) -> dict:
     """The acceptance of issue 15, from the case summaries ``s`` and the ensemble statistics
     (``rotorlanding.ensemble.ensemble_stats`` of each case's drops; a case without one is judged on
     its centred drop). Three groups:
@@ -269,7 +274,8 @@ def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
     - ``cause``: the paper's causes (no whirl at normal friction; the mu_rad switch of Table 1;
       axial rub drives the forward whirl; the ribbon's influence on its frequency), each judged on
       the share of drops in the expected class (``CLASS_SHARE``);
-    - ``held-out``: the rotor fitted on two speeds of Fig. 39 predicts the third.
+    - ``held-out``: the rotor fitted on two speeds of Fig. 39 predicts the third;
+    - ``rig``: ``rig`` (``rig_checks``), every calibrated parameter inside its sourced bound.
 
     Every check carries its margin and the margin's standard error; ``within_noise`` flags a
     verdict whose margin is smaller than that error (it could flip on another machine)."""
@@ -346,12 +352,74 @@ def evaluate_cases(s: dict, ensembles: dict | None = None) -> dict:
               ok, margin=None if err is None else 0.10 * exp - abs(err), se=se,
               ours=f"DE forward {v['ours']}" + ("" if f is None else f", {f:.1f} Hz ({_rel(f, exp):+.1%})"),
               paper_experimental=exp, class_margin=v["margin"], provenance="predicted (held out of the rotor fit)")
+    checks += rig or []
     groups = {}
     for c in checks:
         g = groups.setdefault(c["group"], {"passed": 0, "total": 0})
         g["passed"] += c["pass"]
         g["total"] += 1
     return {"checks": checks, "passed": sum(c["pass"] for c in checks), "total": len(checks), "groups": groups}
+
+
+#: a calibrated value closer than this share of its bound's width to either end sits on the bound
+ON_BOUND = 0.02
+
+
+def calibrated_keys() -> dict[str, tuple[str, dict]]:
+    """Dotted key -> (the calibration file that fits it, its search range {min, max[, log]}): the
+    search ranges of ``scenarios/calibration/rotor_modes.toml`` and ``worn_bearing.toml``, tied
+    keys split."""
+    from .config import load_toml
+
+    out = {}
+    for name in ("rotor_modes.toml", "worn_bearing.toml"):
+        f = project_root() / "scenarios" / "calibration" / name
+        if f.is_file():
+            for tied, rng in load_toml(f).get("ranges", {}).items():
+                for key in tied.split(","):
+                    out[key.strip()] = (f"scenarios/calibration/{name}", rng)
+    return out
+
+
+def rig_checks(rig=None) -> list[dict]:
+    """Every calibrated parameter inside its sourced physical bound (``[bounds]`` of the rig files
+    and scenarios) and not on it (within ``ON_BOUND`` of the width from an end); read from the
+    paper scenario that uses it (the worn drag: the backward landing)."""
+    from .config import get_dotted
+    from .scenario import load_scenario
+
+    scen = {}
+    checks = []
+    from .scenario import Bound
+
+    for key, (cal, rng) in calibrated_keys().items():
+        case = "backward_whirl" if key.startswith("bearings.") else "forward_7000"
+        if case not in scen:
+            fname, sets = CASES[case]
+            scen[case] = load_scenario(paper_dir() / fname, sets, overlays=[rig] if rig else ())
+        sc = scen[case]
+        try:
+            value = get_dotted(sc.raw, key)
+        except InputError:
+            continue  # not a parameter of this rig (another rotor given with --rig)
+        b = sc.bounds.get(key)
+        search = Bound(rng["min"], rng["max"], cal, bool(rng.get("log", False)))
+        pos = None if b is None else b.position(value)
+        # the search range must lie inside the physical bound, and the fitted value must not press
+        # against either: a value on the search range's end is where the fit was stopped, not found
+        spos = search.position(value)
+        inside = b is not None and b.min <= search.min and search.max <= b.max
+        margin = None if pos is None else min(pos, 1 - pos, spos, 1 - spos) - ON_BOUND
+        where = "no bound" if b is None else (f"{value:.4g}: {pos:.0%} of its bound [{b.min:.4g}, {b.max:.4g}]"
+                                              f"{' (log)' if b.log else ''}, {spos:.0%} of the search range "
+                                              f"[{search.min:.4g}, {search.max:.4g}]"
+                                              + ("" if inside else " (search range outside the bound)"))
+        checks.append({"group": "rig", "check": f"{key} inside its physical bound", "pass": inside and margin >= 0,
+                       "rule": f"fitted by {cal}; inside its sourced bound and its search range, >= {ON_BOUND:.0%} "
+                               "of their widths from either end",
+                       "ours": where, "margin": margin, "se": None, "within_noise": False,
+                       "source": None if b is None else b.source})
+    return checks
 
 
 #: the ribbon check's threshold: the relative frequency shift a +/-50 % ribbon change must make
@@ -433,6 +501,8 @@ def counts_line(ev: dict) -> str:
         parts.append(f"the paper's causes: **{g['cause']['passed']} of {g['cause']['total']}**")
     if "held-out" in g:
         parts.append(f"held-out speeds: **{g['held-out']['passed']} of {g['held-out']['total']}**")
+    if "rig" in g:
+        parts.append(f"calibrated parameters inside their sourced bounds: **{g['rig']['passed']} of {g['rig']['total']}**")
     noisy = sum(bool(c.get("within_noise")) for c in ev["checks"])
     return "; ".join(parts) + f". {ev['passed']} of {ev['total']} checks pass in all" + \
         (f"; {noisy} verdict(s) have a margin smaller than their standard error (flagged)." if noisy else ".")
@@ -489,6 +559,15 @@ def report_markdown(result: dict) -> str:
             lines.append(f"| {c['check']} | {c['rule']} | {c['ours']} | {_fmt(c['margin'])}{se} | {_verdict(c)} |")
     else:
         lines += ["Not run: no held-out fit in `scenarios/calibration/holdout/` (or another rig rotor was given)."]
+    rig = [c for c in ev["checks"] if c["group"] == "rig"]
+    if rig:
+        lines += ["", "## The rig: every calibrated parameter inside its physical bound", "",
+                  "Bounds and their sources are written in the rig files (`[bounds]` of `scenarios/rig_rotor.toml`, "
+                  "`scenarios/rig/rig.toml` and the backward scenario).", "",
+                  "| parameter | fitted by | value, bound, position | verdict | source of the bound |", "|---|---|---|---|---|"]
+        for c in rig:
+            lines.append(f"| `{c['check'].split()[0]}` | {c['rule'].split(';')[0].removeprefix('fitted by ')} | "
+                         f"{c['ours']} | {_verdict(c)} | {c['source'] or '-'} |")
     rib = [k for k in ensembles if k.startswith("ribbon_")]
     if rib:
         lines += ["", "## Ribbon study: K_rib and C_rib x0.5 / x1.5 at 7000 rpm (combined landing)", "",
@@ -680,7 +759,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
                       "cpus": os.cpu_count(), "python": platform.python_version(), "landings": len(jobs),
                       "case_wall_s": {k: round(v.get("performance", {}).get("wall_s", float("nan")), 2)
                                       for k, v in summaries.items()}}}
-    result["evaluation"] = evaluate_cases(summaries, ensembles)
+    result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig))
     result["figures"] = plot_validation(result, out)
     (out / "validation.json").write_text(json.dumps(result, indent=2, default=float))
     md = report_markdown(result)

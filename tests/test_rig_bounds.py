@@ -1,0 +1,74 @@
+"""Physical bounds of rig parameters (`[bounds]` in rig, rotor and scenario files): parsed with
+one-line errors, every bound of the rig files names a real parameter, and validate's rig check
+flags a calibrated value that sits on its bound or its search range's end."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from rotorlanding.config import get_dotted, load_toml
+from rotorlanding.errors import InputError
+from rotorlanding.scenario import Bound, load_scenario
+
+ROOT = Path(__file__).resolve().parents[1]
+PAPER = ROOT / "scenarios" / "paper"
+
+
+def test_bound_position_linear_and_log():
+    assert Bound(0.0, 2.0, "s").position(0.5) == pytest.approx(0.25)
+    assert Bound(1.0, 100.0, "s", log=True).position(10.0) == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize("text, field", [
+    ('"axial.c_ax" = {min = 0.5, max = 0.1, source = "x"}', "bounds.axial.c_ax"),
+    ('"axial.c_ax" = {min = 0.0, max = 1.0}', "bounds.axial.c_ax"),
+    ('"axial.c_ax" = {min = 0.0, max = 1.0, source = " "}', "bounds.axial.c_ax.source"),
+    ('"axial.c_ax" = {min = 0.0, max = 1.0, source = "x", log = true}', "bounds.axial.c_ax"),
+    ('"bearings.DE" = {min = 0.0, max = 1.0, source = "x"}', "bounds.bearings.DE"),
+])
+def test_bad_bound_names_the_field(tmp_path, text, field):
+    f = tmp_path / "s.toml"
+    f.write_text(f'include = ["{(PAPER / "forward_whirl_landing.toml").as_posix()}"]\n[bounds]\n{text}\n')
+    with pytest.raises(InputError) as err:
+        load_scenario(f)
+    assert field in str(err.value) and str(f) in str(err.value)
+
+
+def test_every_bound_of_the_rig_files_names_a_parameter_of_the_paper_scenarios():
+    # a bound whose key the scenario lacks bounds nothing (an overlaid rotor may have fewer disks):
+    # so a misspelt key would go unseen without this check
+    for fname in ("forward_whirl_landing.toml", "backward_whirl_landing.toml"):
+        sc = load_scenario(PAPER / fname)
+        declared = load_toml(PAPER / fname).get("bounds", {})
+        assert set(declared) <= set(sc.bounds), fname
+        for key, b in sc.bounds.items():
+            assert b.source and math.isfinite(get_dotted(sc.raw, key)), key
+
+
+def test_calibration_search_ranges_lie_inside_the_physical_bounds():
+    from rotorlanding.validate import calibrated_keys
+
+    bw = load_scenario(PAPER / "backward_whirl_landing.toml")
+    keys = calibrated_keys()
+    assert keys and all(k in bw.bounds for k in keys), [k for k in keys if k not in bw.bounds]
+    for key, (_, rng) in keys.items():
+        b = bw.bounds[key]
+        assert b.min <= rng["min"] < rng["max"] <= b.max, key
+
+
+def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
+    import rotorlanding.validate as v
+
+    rng = {"min": 0.2, "max": 3.2}
+    monkeypatch.setattr(v, "calibrated_keys", lambda: {"bearings.DE.worn_drag_torque": ("space.toml", rng)})
+    (ok,) = v.rig_checks()
+    assert ok["pass"] and ok["source"].startswith("min: healthy")
+    rng["max"] = 2.8292262544910107 * 1.001  # the calibrated value now presses on the search range's end
+    (on,) = v.rig_checks()
+    assert not on["pass"] and on["margin"] < 0
+    rng.update(min=0.01, max=3.2)  # the search range reaches outside the physical bound
+    (out,) = v.rig_checks()
+    assert not out["pass"] and "outside the bound" in out["ours"]
