@@ -64,6 +64,10 @@ def ensemble_stats(members: list[dict]) -> dict:
     rule for a median), the sampling noise against which a step-size change is judged;
     ``onset_se_s`` the same for the onsets, and ``onset_range_s`` their [min, max] (a developing
     worn drag makes the onset a random variable of the drop: docs/calibration.md, session 7).
+    ``v_disp_range_se_m`` / ``v_force_range_se_n``: standard errors of the median peaks.
+    ``de``: the DE journal's own whirl over all members (members with ``de_direction``): its class
+    counts, majority class and median frequency with its standard error; the paper measured its
+    whirl frequencies there, while the landing's whirl may be another bearing's.
     """
     if not members:
         raise ValueError("empty ensemble")
