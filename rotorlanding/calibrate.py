@@ -7,7 +7,8 @@ A space file lists the unknowns and their ranges (any scenario keys, arrays of t
     seed = 1
     t_end = 0.8           # s per landing
     verify_top = 3        # re-run the best designs at half the step (step-convergence check)
-    cases = ["bw"]        # optional: the landings scored (default all: fw3000, fw7000, fw10000, bw)
+    cases = ["bw"]        # optional: the landings scored (default fw3000, fw7000, fw10000, bw; bw015,
+                          # the backward landing at mu_rad 0.15 that must stay calm, on request)
     ensemble = 8          # optional: every case as 8 drops from a 5 um circle, scored on the
                           # members' majority class and medians (rotorlanding.ensemble)
     [fixed]               # optional: applied to every design (e.g. a solver step for the search)
@@ -52,8 +53,13 @@ from .validate import PAPER, paper_dir
 #: s, the onset change between steps h and h/2 that an ensemble may show without its noise
 ONSET_TOL_S = 0.05
 
-CASES = {"fw3000": "forward_whirl_3000rpm.toml", "fw7000": "forward_whirl_landing.toml",
-         "fw10000": "forward_whirl_10000rpm.toml", "bw": "backward_whirl_landing.toml"}
+#: case -> (paper scenario, extra --set): bw015 is the backward landing's bearing at the paper's
+#: normal friction, mu_rad 0.15, which must land calm (Table 1's switch; scored by its whirling share)
+CASES = {"fw3000": ("forward_whirl_3000rpm.toml", []), "fw7000": ("forward_whirl_landing.toml", []),
+         "fw10000": ("forward_whirl_10000rpm.toml", []), "bw": ("backward_whirl_landing.toml", []),
+         "bw015": ("backward_whirl_landing.toml", ["contact.mu_rad=0.15"])}
+#: the cases scored when a space file names none (the switch is opt-in)
+DEFAULT_CASES = ["fw3000", "fw7000", "fw10000", "bw"]
 
 
 def load_space(path) -> dict:
@@ -65,7 +71,7 @@ def load_space(path) -> dict:
         seed = t.integer("seed", 1, minimum=0)
         t_end = t.number("t_end", 0.8, positive=True)
         verify_top = t.integer("verify_top", 0, minimum=0)
-        cases = t.raw("cases", list(CASES))
+        cases = t.raw("cases", list(DEFAULT_CASES))
         if not (isinstance(cases, list) and cases and all(c in CASES for c in cases)):
             raise InputError("cases", cases, f"must be a non-empty list of {', '.join(CASES)}")
         ensemble = t.integer("ensemble", 1)
@@ -111,8 +117,8 @@ def _run(job):
     from .scenario import load_scenario
 
     i, case, design, t_end, fixed, step_factor, extra = job
-    sets = design_overrides(design, fixed) + [f"operating.t_end={t_end}"] + list(extra)
-    fname = CASES[case.split("#")[0]]  # "bw#3": member 3 of the backward landing's ensemble
+    fname, case_sets = CASES[case.split("#")[0]]  # "bw#3": member 3 of the backward landing's ensemble
+    sets = case_sets + design_overrides(design, fixed) + [f"operating.t_end={t_end}"] + list(extra)
     try:
         sc = load_scenario(paper_dir() / fname, sets)
         if step_factor != 1.0:
@@ -125,12 +131,13 @@ def _run(job):
         return i, case, {"direction": "failed", "error": str(exc), "ok": False}
 
 
-def score(res: dict, cases=tuple(CASES)) -> tuple[float, dict]:
+def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
     """Sum of relative errors vs the experiments over ``cases``; 1 per wrong whirl class.
 
     The backward case also scores persistence: the paper's whirl (Figs. 20-24) lasts from its onset
     to the end of the record, so ``1 - persistence`` (share of the time after onset not whirling)
-    is added as ``bw_persist``."""
+    is added as ``bw_persist``. ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
+    the share of its drops that whirl, as ``bw015_whirls``."""
     parts = {}
     for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[PAPER["fig39"][k] for k in
                                                                     ("speed_rpm", "experimental_hz")]):
@@ -149,6 +156,10 @@ def score(res: dict, cases=tuple(CASES)) -> tuple[float, dict]:
         parts["bw_persist"] = 1.0 - min(1.0, max(0.0, b.get("persistence", 1.0)))
     elif "bw" in cases:
         parts["bw_freq"] = parts["bw_onset"] = parts["bw_persist"] = 1.0
+    if "bw015" in cases:  # the same bearing at mu_rad 0.15 must land calm: score its whirling share
+        r = res.get("bw015", {})
+        counts = r.get("counts") or {r.get("direction", "failed"): 1}
+        parts["bw015_whirls"] = 1.0 - counts.get("none", 0) / sum(counts.values())
     return float(sum(parts.values())), parts
 
 

@@ -131,3 +131,16 @@ def test_worn_bearing_calibration_scores_the_drops_validate_judges():
     space = load_space(Path(__file__).resolve().parents[1] / "scenarios" / "calibration" / "worn_bearing.toml")
     assert space["ensemble"] == ENSEMBLE["backward_whirl"]
     assert space["cases"] == ["bw"]
+
+
+def test_switch_case_scores_the_share_of_whirling_drops_at_normal_friction():
+    """bw015 (the backward landing's bearing at mu_rad 0.15, Table 1's switch) must land calm:
+    its score part is the share of its drops that whirl, in either direction."""
+    from rotorlanding.calibrate import CASES, score
+
+    assert CASES["bw015"] == ("backward_whirl_landing.toml", ["contact.mu_rad=0.15"])
+    total, parts = score({"bw015": {"counts": {"none": 6, "backward": 1, "forward": 1}}}, ["bw015"])
+    assert parts == {"bw015_whirls": 0.25} and total == 0.25
+    assert score({"bw015": {"direction": "none"}}, ["bw015"])[1]["bw015_whirls"] == 0.0
+    assert score({"bw015": {"direction": "backward"}}, ["bw015"])[1]["bw015_whirls"] == 1.0
+    assert "bw015_whirls" not in score({})[1]  # opt-in: not among the default cases
