@@ -84,7 +84,7 @@ def _onset_note() -> str:
     return (f"The worn drag develops as the race turns (growth angle {grow:.3g} rad, "
             "`worn_drag_growth_angle`), and that angle was calibrated with the drag torque on this table, "
             "scored on this ensemble's drops (`scenarios/calibration/worn_bearing.toml`): the onset row "
-            "reproduces the paper's one landing rather than predicting it (docs/calibration.md, session 7).")
+            "reproduces the paper's one landing rather than predicting it (docs/calibration.md, session 8).")
 
 
 def _run_case(args):

@@ -66,7 +66,8 @@ def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
     monkeypatch.setattr(v, "calibrated_keys", lambda: {"bearings.DE.worn_drag_torque": ("space.toml", rng)})
     (ok,) = v.rig_checks()
     assert ok["pass"] and ok["source"].startswith("min: healthy")
-    rng["max"] = 2.8292262544910107 * 1.001  # the calibrated value now presses on the search range's end
+    value = load_scenario(PAPER / "backward_whirl_landing.toml").bearings["DE"].worn_drag_torque
+    rng["max"] = value * 1.001  # the calibrated value now presses on the search range's end
     (on,) = v.rig_checks()
     assert not on["pass"] and on["margin"] < 0
     rng.update(min=0.01, max=3.2)  # the search range reaches outside the physical bound
