@@ -234,24 +234,34 @@ def _value(w: dict, table: str, key) -> tuple[float | None, float | None]:
     return (v, se) if i is None else (v[i], se[i] if se else None)
 
 
+#: the calibration files whose results are in the paper scenarios (scenarios/calibration/): the
+#: rotor's modal fit and the worn-bearing calibration of the backward landing
+ADOPTED = ("rotor_modes.toml", "worn_bearing.toml")
+
+
 def provenance() -> dict:
-    """Row key -> how the number relates to our parameters: 'fitted: ...' when a calibration file
-    of this checkout scores it, else 'predicted'. Read from the calibration files, so a held-out
-    fit or a new calibration changes the label without editing this module."""
+    """Row key -> how the number relates to our parameters: 'fitted: ...' when an adopted
+    calibration file (``ADOPTED``) scores it, else 'predicted'. Read from the calibration files, so
+    a held-out fit or a new calibration changes the label without editing this module. Besides the
+    table rows: ``switch_calm``, the mu_rad 0.15 half of Table 1's switch (fitted when a calibration
+    scores the ``bw015`` case)."""
     from .config import load_toml
 
     cal = project_root() / "scenarios" / "calibration"
-    out = {row[0]: "predicted" for row in TABLE_ROWS}
-    modes = cal / "rotor_modes.toml"
-    if modes.is_file():
-        speeds = load_toml(modes).get("targets", {}).get("speeds_rpm", [])
-        for rpm in speeds:
-            out[f"fig39_{int(rpm)}"] = "fitted: rotor geometry (scenarios/calibration/rotor_modes.toml)"
-    worn = cal / "worn_bearing.toml"
-    if worn.is_file() and "bw" in load_toml(worn).get("cases", []):
-        # calibrate.score's backward case scores frequency and onset (and class, persistence)
-        for k in ("t1_frequency", "t1_onset"):
-            out[k] = "fitted: worn drag T_w and growth angle (scenarios/calibration/worn_bearing.toml)"
+    out = {row[0]: "predicted" for row in TABLE_ROWS} | {"switch_calm": "predicted"}
+    for name in ADOPTED:
+        f = cal / name
+        if not f.is_file():
+            continue
+        data = load_toml(f)
+        n = len(data.get("ranges", {}))
+        label = f"fitted (scenarios/calibration/{name}: {n} unknown{'s' if n != 1 else ''})"
+        for rpm in data.get("targets", {}).get("speeds_rpm", []):  # a modal fit (fit-modes)
+            out[f"fig39_{int(rpm)}"] = label
+        if "bw" in data.get("cases", []):  # calibrate.score's backward case: frequency and onset
+            out["t1_frequency"] = out["t1_onset"] = label
+        if "bw015" in data.get("cases", []):
+            out["switch_calm"] = label
     return out
 
 
@@ -312,6 +322,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
             counts = w["counts"] if "counts" in w else {w["direction"]: 1}
         v = _class_verdict(counts, sum(counts.values()), want)
         check("cause", name, rule + f" in >= {CLASS_SHARE:.3g} of the drops", v.pop("pass"), **v)
+        return checks[-1]
 
     classes("no_whirl", "none", "no-whirl landing (mu_rad 0.15) is calm", "no whirl at any bearing")
     w = _judged(s, ensembles, "no_whirl")[0]
@@ -319,10 +330,12 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
     check("cause", "no-whirl: inner race reaches rotor speed", "median DE race / rotor speed at the end >= 0.97",
           ratio is not None and ratio >= 0.97, ours=None if ratio is None else round(ratio, 4),
           margin=None if ratio is None else ratio - 0.97)
-    classes("backward_whirl", "backward", "mu_rad switch: mu_rad 0.3 whirls backward", "backward whirl")
+    classes("backward_whirl", "backward", "mu_rad switch: mu_rad 0.3 whirls backward",
+            "backward whirl")["provenance"] = prov["t1_frequency"]
     if "backward_mu_0.15" in s or "backward_mu_0.15" in ensembles:
         classes("backward_mu_0.15", "none", "mu_rad switch: the same bearing at mu_rad 0.15 is calm",
                 "no whirl at any bearing")
+        checks[-1]["provenance"] = prov["switch_calm"]
     for rpm in PAPER["fig39"]["speed_rpm"]:
         classes(f"forward_{rpm}", "forward", f"combined landing {rpm} rpm whirls forward at the DE",
                 "the DE journal whirls forward (the paper measured the DE)", where="DE")
@@ -370,12 +383,11 @@ ON_BOUND = 0.02
 
 def calibrated_keys() -> dict[str, tuple[str, dict]]:
     """Dotted key -> (the calibration file that fits it, its search range {min, max[, log]}): the
-    search ranges of ``scenarios/calibration/rotor_modes.toml`` and ``worn_bearing.toml``, tied
-    keys split."""
+    search ranges of the adopted calibration files (``ADOPTED``), tied keys split."""
     from .config import load_toml
 
     out = {}
-    for name in ("rotor_modes.toml", "worn_bearing.toml"):
+    for name in ADOPTED:
         f = project_root() / "scenarios" / "calibration" / name
         if f.is_file():
             for tied, rng in load_toml(f).get("ranges", {}).items():
@@ -545,11 +557,12 @@ def report_markdown(result: dict) -> str:
     lines += ["", "## The paper's causes", "",
               "Each judged on the share of drops in the expected class; the margin of a class check is in drops "
               "(its standard error: binomial, sqrt(n p (1 - p)), p kept half a drop from 0 and 1).", "",
-              "| check | rule | ours | margin (s.e.) | verdict |", "|---|---|---|---|---|"]
+              "| check | rule | ours | margin (s.e.) | verdict | fitted or predicted |", "|---|---|---|---|---|---|"]
     for c in (c for c in ev["checks"] if c["group"] == "cause"):
         m = "-" if c["margin"] is None else _fmt(c["margin"]) + (f" {c['margin_unit']}" if c.get("margin_unit") else "") \
             + ("" if c["se"] is None else f" ({c['se']:.2g})")
-        lines.append(f"| {c['check']} | {c['rule']} | {_fmt(c.get('ours'))} | {m} | {_verdict(c)} |")
+        lines.append(f"| {c['check']} | {c['rule']} | {_fmt(c.get('ours'))} | {m} | {_verdict(c)} | "
+                     f"{c.get('provenance', 'predicted')} |")
     held = [c for c in ev["checks"] if c["group"] == "held-out"]
     lines += ["", "## Held-out speeds: the rotor fitted on two speeds predicts the third", ""]
     if held:

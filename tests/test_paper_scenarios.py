@@ -203,3 +203,17 @@ def test_backward_onset_note_reads_the_calibrated_growth_angle():
         assert f"growth angle {grow:.3g} rad" in note and "calibrated" in note
     else:
         assert note == ""
+
+
+def test_provenance_follows_the_adopted_calibrations(monkeypatch):
+    """A calibration that scores the mu_rad 0.15 landing (case bw015) makes the calm half of the
+    switch a fitted result, not a prediction; a calibration not adopted labels nothing."""
+    import rotorlanding.validate as v
+
+    assert v.provenance()["switch_calm"] == "predicted"
+    monkeypatch.setattr(v, "ADOPTED", ("rotor_modes.toml", "worn_bearing_switch.toml"))
+    prov = v.provenance()
+    assert prov["switch_calm"].startswith("fitted (scenarios/calibration/worn_bearing_switch.toml")
+    assert prov["t1_onset"] == prov["switch_calm"] and prov["t2_force_min"] == "predicted"
+    monkeypatch.setattr(v, "ADOPTED", ())
+    assert set(v.provenance().values()) == {"predicted"}
