@@ -50,18 +50,15 @@ def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_is_the_cause_sho
     """Short backward-whirl landing, judged as the validation judges it: drops from a 5 um circle
     (the centred drop is mirror-symmetric and its whirl hangs on round-off). Without the worn
     bearing's drag the same mu_rad = 0.3 landing does not whirl backward (our causal claim).
-    The drag is present from the drop (growth angle 0): the calibrated drag develops over some
-    tenths of a second, after the 0.5 s this short test can afford, and the causal claim does not
-    depend on when the drag arrives."""
+    1.0 s of the 1.2 s landing: the calibrated drag develops over some tenths of a second (median
+    onset 0.33 s; by 0.5 s only 2 of 4 drops whirled). With the drag present from the drop (growth
+    angle 0) at the calibrated 3.0 N m the whirl jumps to the 64-70 Hz branch instead."""
     from rotorlanding.ensemble import drop_offsets, ensemble_stats
-
-    at_once = [f"bearings.{b}.worn_drag_growth_angle=0.0" for b in ("DE", "NDE")]
 
     def members(extra):
         out = []
         for sets in drop_offsets(4):
-            sets = sets + at_once
-            w = _whirl("backward_whirl_landing.toml", 0.5, sets + extra)["whirl"]
+            w = _whirl("backward_whirl_landing.toml", 1.0, sets + extra)["whirl"]
             out.append({"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"]})
         return ensemble_stats(out)
 
