@@ -56,7 +56,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
                                "vertical z (on the rotor)"),
                               ((series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"]) * 1e-3,
                                "horizontal y (on the rotor)")],
-                   "{b} force on the rotor [kN]", "contact force on the rotor (inner race on sleeve, with face rub)",
+                   "{b} force on the rotor [kN]", "force on the rotor (race contact + face rub)",
                    "forces.png")
 
     # top: the journal relative to the inner race, which the clearance bounds (up to the Hertz
