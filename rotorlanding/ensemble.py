@@ -72,9 +72,7 @@ def ensemble_stats(members: list[dict]) -> dict:
     if not members:
         raise ValueError("empty ensemble")
     counts = Counter(m["direction"] for m in members)
-    top = max(counts.values())
-    classes = [c for c, k in counts.items() if k == top]
-    direction = next((c for c in ("backward", "forward") if c in classes), classes[0])
+    direction = _majority(counts)
     same = [m for m in members if m["direction"] == direction]
     freqs = [m["frequency_hz"] for m in same if m.get("frequency_hz") is not None]
     onsets = [m["onset_s"] for m in same if m.get("onset_s") is not None]
@@ -113,14 +111,20 @@ def ensemble_stats(members: list[dict]) -> dict:
     de = [m for m in members if "de_direction" in m]
     if de:
         de_counts = Counter(m["de_direction"] for m in de)
-        de_top = max(de_counts.values())
-        de_dir = next((c for c in ("backward", "forward") if de_counts.get(c) == de_top),
-                      max(de_counts, key=de_counts.get))
+        de_dir = _majority(de_counts)
         f_de = [m["de_frequency_hz"] for m in de if m["de_direction"] == de_dir and m.get("de_frequency_hz")]
         out["de"] = {"counts": dict(de_counts), "direction": de_dir,
                      "frequency_hz": median(f_de) if f_de and de_dir != "none" else None,
                      "frequency_se_hz": _median_se(f_de) if len(f_de) >= 2 and de_dir != "none" else None}
     return out
+
+
+def _majority(counts: Counter) -> str:
+    """The most frequent class; ties go to a whirl class, so a half-whirling ensemble is not
+    called calm."""
+    top = max(counts.values())
+    classes = [c for c, k in counts.items() if k == top]
+    return next((c for c in ("backward", "forward") if c in classes), classes[0])
 
 
 def _median_se(vals) -> float:

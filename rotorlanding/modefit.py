@@ -187,7 +187,7 @@ def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
         "mode_hz": [float(x) for x in f[:n_fit]], "predicted_whirl_hz": [float(x * sp["lock_ratio"]) for x in f[:n_fit]],
         "max_mode_to_spin": sp["max_mode_to_spin"] if math.isfinite(sp["max_mode_to_spin"]) else None,
         "mode_to_spin": [float(x / s) for x, s in zip(f[:n_fit], spin_hz)],
-        "relative_error": [float(x * sp["lock_ratio"] / t - 1) for x, t in zip(f, sp["frequencies_hz"])],
+        "relative_error": [float(x * sp["lock_ratio"] / t - 1) for x, t in zip(f[:n_fit], sp["frequencies_hz"])],
         "held_out": [{"speed_rpm": s, "mode_hz": float(x), "predicted_whirl_hz": float(x * sp["lock_ratio"]),
                       "mode_to_spin": float(x / h)}
                      for s, x, h in zip(sp["predict_speeds_rpm"], f[n_fit:], spin_hz[n_fit:])],

@@ -203,6 +203,11 @@ def band(simulated: float, experimental: float) -> float:
     return max(0.10 * abs(experimental), abs(simulated - experimental))
 
 
+def _de_counts(w: dict) -> dict:
+    """Drops per class of the DE journal's own whirl (a centred member counts as one drop)."""
+    return w["de"]["counts"] if "de" in w else {w.get("de_direction", "none"): 1}
+
+
 def _de_whirl(w: dict) -> tuple[str, float | None, float | None, str]:
     """The DE journal's own whirl in an ensemble (or centred member): direction, median frequency,
     its standard error, and the count text."""
@@ -317,7 +322,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
     def classes(key, want, name, rule, where="landing"):
         w = _judged(s, ensembles, key)[0]
         if where == "DE":
-            counts = w["de"]["counts"] if "de" in w else {w.get("de_direction", "none"): 1}
+            counts = _de_counts(w)
         else:
             counts = w["counts"] if "counts" in w else {w["direction"]: 1}
         v = _class_verdict(counts, sum(counts.values()), want)
@@ -334,8 +339,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
             "backward whirl")["provenance"] = prov["t1_frequency"]
     if "backward_mu_0.15" in s or "backward_mu_0.15" in ensembles:
         classes("backward_mu_0.15", "none", "mu_rad switch: the same bearing at mu_rad 0.15 is calm",
-                "no whirl at any bearing")
-        checks[-1]["provenance"] = prov["switch_calm"]
+                "no whirl at any bearing")["provenance"] = prov["switch_calm"]
     for rpm in PAPER["fig39"]["speed_rpm"]:
         classes(f"forward_{rpm}", "forward", f"combined landing {rpm} rpm whirls forward at the DE",
                 "the DE journal whirls forward (the paper measured the DE)", where="DE")
@@ -358,8 +362,8 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
             continue
         w = _judged(s, ensembles, key)[0]
         d, f, se, txt = _de_whirl(w)
-        exp = PAPER["fig39"]["experimental_hz"][PAPER["fig39"]["speed_rpm"].index(rpm)]
-        counts = w["de"]["counts"] if "de" in w else {d: 1}
+        exp = _paper_values("fig39", rpm)[1]
+        counts = _de_counts(w)
         v = _class_verdict(counts, sum(counts.values()), "forward")
         err = None if (f is None or d != "forward") else f - exp
         ok = v["pass"] and err is not None and abs(err) <= 0.10 * exp
