@@ -34,13 +34,15 @@ import numpy as np
 from user_forces.axial import axial_force as _axial_force_py
 from user_forces import axial_rub as _axial_rub_mod
 from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.ball_bearing import ball_force as _ball_force_py
 from user_forces.ball_bearing import worn_drag_development as _worn_dev_py
 from user_forces.ball_bearing import worn_drag_torque as _worn_drag_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
+from user_forces.ribbon import outer_race_friction as _outer_race_friction_py
+from user_forces.ribbon import ribbon_force as _ribbon_force_py
 
 from .landing import G_ACC, BearingSpec, LandingSpec
-
-OMEGA_REG_HP = 0.1  # rad/s, as forces.OMEGA_REG_HP
+from .params import OMEGA_REG_HP
 
 _njit = numba.njit(cache=True, fastmath=False)
 _radial_contact = _njit(_radial_contact_py)
@@ -48,6 +50,9 @@ _axial_force = _njit(_axial_force_py)
 _axial_rub = _njit(_axial_rub_py)
 _worn_drag = _njit(_worn_drag_py)
 _worn_dev = _njit(_worn_dev_py)
+_ball_force = _njit(_ball_force_py)
+_ribbon_force = _njit(_ribbon_force_py)
+_outer_race_friction = _njit(_outer_race_friction_py)
 
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
@@ -55,34 +60,26 @@ _worn_dev = _njit(_worn_dev_py)
  P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_TWPHI, P_SIZE) = range(44)
 
 
-def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
-    """The bearing's law parameters as the kernel's float vector (same choices as bearing_forces)."""
-    from user_forces.ball_bearing import harris_palmgren_constants
+# the kernel's slot of every BearingLaws field it reads (bools as 0/1; hp fills P_XS..P_WREG2)
+_P_FIELDS = {
+    P_CL: "clearance", P_RR: "sleeve_radius", P_RI: "race_radius", P_KH: "k_hertz", P_EX: "exponent",
+    P_KV: "k_visc", P_MU: "mu_rad", P_VREG: "v_reg", P_KB1: "k_b1", P_KB2: "k_b2", P_CB: "c_b",
+    P_DRAG: "ball_drag", P_KRIB: "k_rib", P_CRIB: "c_rib", P_ETA: "eta", P_COUL: "outer_coulomb", P_MUD: "mu_d",
+    P_CI: "inner_race_damping", P_CO: "outer_race_damping", P_FACE: "axial_face", P_RUB: "axial_rub",
+    P_MUAX: "mu_ax", P_R1: "face_inner_radius", P_R2: "face_outer_radius", P_VREGAX: "v_reg_axial",
+    P_TW: "worn_drag_torque", P_TWPHI: "worn_drag_growth_angle",
+}
 
-    sc = spec.scenario
-    eff = sc.effects
-    p = b.params
-    c = sc.contact
-    a = sc.axial
+
+def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
+    """The bearing's resolved laws (``b.laws``) and the rotor's axial law as the kernel's float vector."""
+    L = b.laws
+    a = spec.scenario.axial
     P = np.zeros(P_SIZE)
-    P[P_CL], P[P_RR], P[P_RI] = p.clearance, p.sleeve_radius, p.race_radius
-    P[P_KH], P[P_EX], P[P_VREG] = c.k_hertz, c.exponent, c.v_reg
-    P[P_KV] = c.k_visc if eff["contact_damping"] else 0.0
-    P[P_MU] = c.mu_rad if eff["radial_friction"] else 0.0
-    P[P_KB1], P[P_KB2], P[P_CB] = p.k_b1, p.k_b2, p.c_b
-    P[P_DRAG] = 1.0 if eff["ball_drag"] else 0.0
-    P[P_TW] = p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0
-    P[P_TWPHI] = p.worn_drag_growth_angle
-    P[P_XS:P_WREG2 + 1] = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter,
-                                                    p.hp_z, p.hp_y, omega_reg=OMEGA_REG_HP)
-    P[P_KRIB], P[P_CRIB] = p.k_rib, p.c_rib
-    P[P_ETA] = p.eta if eff["ribbon_cross_coupling"] else 0.0
-    P[P_COUL] = 1.0 if (eff["outer_race_coulomb"] and p.axial_face) else 0.0
-    P[P_MUD], P[P_CI], P[P_CO] = p.mu_d, p.inner_race_damping, p.outer_race_damping
-    P[P_WI], P[P_WO] = -p.inner_race_mass * G_ACC, -p.outer_race_mass * G_ACC
-    P[P_FACE] = 1.0 if p.axial_face else 0.0
-    P[P_RUB] = 1.0 if (p.axial_face and eff["axial_rub"]) else 0.0
-    P[P_MUAX], P[P_R1], P[P_R2], P[P_VREGAX] = c.mu_ax, p.face_inner_radius, p.face_outer_radius, c.v_reg_axial
+    for slot, name in _P_FIELDS.items():
+        P[slot] = float(getattr(L, name))
+    P[P_XS:P_WREG2 + 1] = L.hp
+    P[P_WI], P[P_WO] = -L.inner_race_mass * G_ACC, -L.outer_race_mass * G_ACC
     P[P_CLAX], P[P_DM], P[P_KCB], P[P_KWS], P[P_KHS], P[P_CAX] = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
     return P
 
@@ -287,30 +284,16 @@ def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, v
         fz += gz
         t_rot += gr
         t_race += gi
-    ey = ry - oy
-    ez = rz - oz
-    k = P[P_KB2] * math.sqrt(ey * ey + ez * ez) + P[P_KB1]
-    by = -k * ey - P[P_CB] * (vry - voy)
-    bz = -k * ez - P[P_CB] * (vrz - voz)
+    by, bz = _ball_force(ry - oy, rz - oz, P[P_KB1], P[P_KB2], vry - voy, vrz - voz, P[P_CB])
     if P[P_DRAG] != 0.0:
         t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
     if P[P_TW] != 0.0:
         t_race += _worn_drag(omi, P[P_TW], OMEGA_REG_HP, rphi, P[P_TWPHI])
-    # ribbon
-    krib = P[P_KRIB]
-    crib = P[P_CRIB]
-    h = oy * voz - oz * voy
-    vr = P[P_VREG]
-    den = h * h + vr * vr * (oy * oy + oz * oz)
-    ke = 0.0
-    if den > 0.0:
-        ke = krib * P[P_ETA] * h / math.sqrt(den)
-    hy = -crib * voy - krib * oy + ke * oz
-    hz = -crib * voz - krib * oz - ke * oy
+    hy, hz = _ribbon_force(oy, oz, voy, voz, P[P_KRIB], P[P_CRIB], P[P_ETA], P[P_VREG])
     if P[P_COUL] != 0.0 and f_ax > 0.0:
-        s = -P[P_MUD] * f_ax / math.sqrt(voy * voy + voz * voz + vr * vr)
-        hy += s * voy
-        hz += s * voz
+        ky, kz = _outer_race_friction(voy, voz, f_ax, P[P_MUD], P[P_VREG])
+        hy += ky
+        hz += kz
     ci = P[P_CI]
     co = P[P_CO]
     return (fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + P[P_WI], t_race,
@@ -588,10 +571,11 @@ def rotor_load_parameters(spec: LandingSpec, include: bool) -> np.ndarray:
     R = np.zeros(R_SIZE)
     R[R_ON] = 1.0 if include else 0.0
     R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX] = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
-    R[R_CW1], R[R_CW2] = sc.spin.c_w1, sc.spin.c_w2
-    R[R_WIND] = 1.0 if sc.effects["windage"] else 0.0
-    R[R_DRIVE] = 1.0 if sc.spin.drive == "constant" else 0.0
-    R[R_GAIN], R[R_OMEGA0] = sc.spin.drive_gain, sc.omega0
+    rl = spec.rotor_laws
+    R[R_CW1], R[R_CW2] = rl.c_w1, rl.c_w2
+    R[R_WIND] = 1.0 if rl.windage else 0.0
+    R[R_DRIVE] = 1.0 if rl.constant_drive else 0.0
+    R[R_GAIN], R[R_OMEGA0] = rl.drive_gain, rl.omega0
     R[R_KAXAMB], R[R_CAXAMB] = sc.amb.axial_stiffness, sc.amb.axial_damping
     return R
 
@@ -725,7 +709,7 @@ def system_forces(spec: LandingSpec):
     TB = np.array([b.tilt_beta for b in spec.bearings])
     tilts = np.zeros((len(spec.bearings), 2))
     K, C, G, fg = spec.K, spec.C, spec.G, spec.f_gravity
-    gyro = sc.effects["gyroscopic"]
+    gyro = spec.rotor_laws.gyroscopic
     frot = rotor_forces(spec, gyroscopic_in_user_function=False) if need_lateral else None
     rot_idx = list(range(nl)) + [spec.i_theta, spec.i_axial]
     amb = sc.amb

@@ -158,17 +158,16 @@ def _stored_input(path: Path) -> dict:
 def normal_forces(spec, q: np.ndarray, v: np.ndarray) -> list[np.ndarray]:
     """Contact normal force of each bearing at every sample, vectorised (the law of
     user_forces.radial_contact: F_N = delta^e (k_hertz + k_visc delta'), >= 0)."""
-    c = spec.scenario.contact
-    kv = c.k_visc if spec.scenario.effects["contact_damping"] else 0.0
     out = []
     for b in spec.bearings:
+        L = b.laws
         s, r = b.i_station, b.i_race
         dy, dz = q[:, s] - q[:, r], q[:, s + 1] - q[:, r + 1]
         dvy, dvz = v[:, s] - v[:, r], v[:, s + 1] - v[:, r + 1]
         dist = np.hypot(dy, dz)
-        delta = np.maximum(dist - b.params.clearance, 0.0)
+        delta = np.maximum(dist - L.clearance, 0.0)
         rate = (dy * dvy + dz * dvz) / np.maximum(dist, 1e-300)
-        out.append(np.maximum(delta ** c.exponent * (c.k_hertz + kv * rate), 0.0))
+        out.append(np.maximum(delta ** L.exponent * (L.k_hertz + L.k_visc * rate), 0.0))
     return out
 
 

@@ -229,7 +229,7 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
     frot = rotor_forces(spec, gyroscopic_in_user_function=False)
     G = np.zeros((n_rot, n_rot))
     G[: spec.n_lat, : spec.n_lat] = spec.G
-    gyro = spec.scenario.effects["gyroscopic"]
+    gyro = spec.rotor_laws.gyroscopic
     if gyro:
         C = C + spec.scenario.omega0 * G
 
@@ -287,7 +287,7 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
         race_outer.append((race, outer))
 
     def rub_tilt(b):
-        return b.params.axial_face and spec.scenario.effects["axial_rub"]
+        return b.laws.axial_rub
 
     if merged:
         # one connector for all bearings (and the spin/axial rotor loads): one Python call per

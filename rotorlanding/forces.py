@@ -26,14 +26,13 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub as _axial_rub_py
-from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast, worn_drag_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
 
 from .landing import G_ACC, BearingSpec, LandingSpec
-
-OMEGA_REG_HP = 0.1  # rad/s, sign regularisation of the ball drag torque
+from .params import OMEGA_REG_HP
 
 
 def _compile_axial_rub():
@@ -64,7 +63,7 @@ def axial_law(spec: LandingSpec):
 def rotor_loads_need_lateral(spec: LandingSpec, gyroscopic_in_user_function: bool = True) -> bool:
     sc = spec.scenario
     amb_active = sc.amb.t_drop > 0.0 or not sc.amb.drop_radial
-    return amb_active or spec.unbalance_rows is not None or (gyroscopic_in_user_function and sc.effects["gyroscopic"])
+    return amb_active or spec.unbalance_rows is not None or (gyroscopic_in_user_function and spec.rotor_laws.gyroscopic)
 
 
 def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True):
@@ -73,9 +72,9 @@ def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True)
     With ``gyroscopic_in_user_function=False`` the caller accounts for -Omega G q' itself (the
     Exudyn model puts Omega G into the damping matrix before each step, see exudyn_model)."""
     sc = spec.scenario
-    eff = sc.effects
+    rl = spec.rotor_laws
     n_lat = spec.n_lat
-    G = spec.G if (eff["gyroscopic"] and gyroscopic_in_user_function) else None
+    G = spec.G if (rl.gyroscopic and gyroscopic_in_user_function) else None
     amb = sc.amb
     t_drop = amb.t_drop
     k_amb, c_amb = amb.stiffness, amb.damping
@@ -88,10 +87,8 @@ def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True)
         u_mag = sc.unbalance.magnitude
         u_phase = math.radians(sc.unbalance.phase_deg)
         uy, uz = unb
-    wind = eff["windage"]
-    cw1, cw2 = sc.spin.c_w1, sc.spin.c_w2
-    constant_drive = sc.spin.drive == "constant"
-    gain, omega0 = sc.spin.drive_gain, sc.omega0
+    wind, cw1, cw2 = rl.windage, rl.c_w1, rl.c_w2
+    constant_drive, gain, omega0 = rl.constant_drive, rl.drive_gain, rl.omega0
     fax = axial_law(spec)
     thrust = spec.thrust
     if not rotor_loads_need_lateral(spec, gyroscopic_in_user_function):
@@ -137,9 +134,9 @@ def rotor_loads_jacobian(spec: LandingSpec, *, gyroscopic_in_user_function: bool
     (AMB, unbalance, windage, drive, axial contact and AMB; gyroscopics only when in the user
     function)."""
     sc = spec.scenario
-    eff = sc.effects
+    rl = spec.rotor_laws
     n_lat = spec.n_lat
-    G = spec.G if (eff["gyroscopic"] and gyroscopic_in_user_function) else None
+    G = spec.G if (rl.gyroscopic and gyroscopic_in_user_function) else None
     amb = sc.amb
     t_drop, k_amb, c_amb = amb.t_drop, amb.stiffness, amb.damping
     rows = spec.amb_rows
@@ -150,10 +147,8 @@ def rotor_loads_jacobian(spec: LandingSpec, *, gyroscopic_in_user_function: bool
         u_mag = sc.unbalance.magnitude
         u_phase = math.radians(sc.unbalance.phase_deg)
         uy, uz = unb
-    wind = eff["windage"]
-    cw1, cw2 = sc.spin.c_w1, sc.spin.c_w2
-    constant_drive = sc.spin.drive == "constant"
-    gain = sc.spin.drive_gain
+    wind, cw1, cw2 = rl.windage, rl.c_w1, rl.c_w2
+    constant_drive, gain = rl.constant_drive, rl.drive_gain
     a = sc.axial
     cl_ax, dm, cax = a.cl_ax, a.delta_m, a.c_ax
     k1 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_ws)
@@ -213,32 +208,21 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     field and changes little within a step; reading it from the start of the step keeps this
     object at 9 coordinates instead of the whole rotor, which makes its numerical Jacobian 2.5x
     cheaper."""
-    sc = spec.scenario
-    eff = sc.effects
-    p = b.params
-    c = sc.contact
-    a = sc.axial
-    clearance, r_rot, r_race = p.clearance, p.sleeve_radius, p.race_radius
-    kh, ex, v_reg = c.k_hertz, c.exponent, c.v_reg
-    kv = c.k_visc if eff["contact_damping"] else 0.0
-    mu = c.mu_rad if eff["radial_friction"] else 0.0
-    kb1, kb2, cb = p.k_b1, p.k_b2, p.c_b
-    drag = eff["ball_drag"]
-    worn = p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0
-    worn_phi = p.worn_drag_growth_angle
-    hp = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter, p.hp_z, p.hp_y,
-                                   omega_reg=OMEGA_REG_HP)
-    krib, crib = p.k_rib, p.c_rib
-    eta = p.eta if eff["ribbon_cross_coupling"] else 0.0
-    coulomb = eff["outer_race_coulomb"] and p.axial_face
-    mu_d = p.mu_d
-    ci, co = p.inner_race_damping, p.outer_race_damping
-    wi, wo = -p.inner_race_mass * G_ACC, -p.outer_race_mass * G_ACC
-    face = p.axial_face
-    rub = face and eff["axial_rub"]
+    L = b.laws
+    a = spec.scenario.axial
+    clearance, r_rot, r_race = L.clearance, L.sleeve_radius, L.race_radius
+    kh, ex, v_reg, kv, mu = L.k_hertz, L.exponent, L.v_reg, L.k_visc, L.mu_rad
+    kb1, kb2, cb = L.k_b1, L.k_b2, L.c_b
+    drag, hp = L.ball_drag, L.hp
+    worn, worn_phi = L.worn_drag_torque, L.worn_drag_growth_angle
+    krib, crib, eta = L.k_rib, L.c_rib, L.eta
+    coulomb, mu_d = L.outer_coulomb, L.mu_d
+    ci, co = L.inner_race_damping, L.outer_race_damping
+    wi, wo = -L.inner_race_mass * G_ACC, -L.outer_race_mass * G_ACC
+    face, rub = L.axial_face, L.axial_rub
     if rub and tilt is None:
         raise ValueError(f"bearing {b.name}: axial rub needs the tilt holder")
-    mu_ax, r1, r2, v_reg_ax = c.mu_ax, p.face_inner_radius, p.face_outer_radius, c.v_reg_axial
+    mu_ax, r1, r2, v_reg_ax = L.mu_ax, L.face_inner_radius, L.face_outer_radius, L.v_reg_axial
     cl_ax, dm, kcb, kws, khs, cax = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
 
     def f(t, q, v):

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .params import BearingLaws, RotorLaws, bearing_laws, rotor_laws
 from .reduction import LinearRotor, craig_bampton
 from .scenario import Scenario
 from .timoshenko import GRAVITY, RotorFE, assemble
@@ -46,7 +47,8 @@ class BearingSpec:
     i_race: int                 # index in q of race_y (race_z, race_phi, outer_y, outer_z follow)
     tilt_alpha: np.ndarray      # row of T giving the rotor's alpha at the station from q_lat
     tilt_beta: np.ndarray
-    params: object              # scenario.Bearing
+    params: object              # scenario.Bearing (raw values, as written)
+    laws: BearingLaws           # the same bearing with the effect switches applied (params.bearing_laws)
 
     @property
     def i_outer(self) -> int:
@@ -73,6 +75,7 @@ class LandingSpec:
     unbalance_rows: tuple[np.ndarray, np.ndarray] | None = None
     amb_rows: list[tuple[int, int]] = field(default_factory=list)  # AMB acts on these (y, z) q-indices
     names: list[str] = field(default_factory=list)
+    rotor_laws: RotorLaws | None = None   # spin loads and gyroscopics with the effect switches applied
 
     @property
     def n(self) -> int:
@@ -137,14 +140,16 @@ def build_spec(scenario: Scenario) -> LandingSpec:
         names += [f"{bname}.race_y", f"{bname}.race_z", f"{bname}.race_phi", f"{bname}.outer_y", f"{bname}.outer_z"]
         node = fe.station_nodes[p.station]
         bearings.append(BearingSpec(bname, p.station, cb.index(p.station, "y"), i_race,
-                                    cb.T[4 * node + 2].copy(), cb.T[4 * node + 3].copy(), p))
+                                    cb.T[4 * node + 2].copy(), cb.T[4 * node + 3].copy(), p,
+                                    bearing_laws(scenario, p)))
     unb = None
     if scenario.unbalance is not None and scenario.effects["unbalance"]:
         node = fe.station_nodes[scenario.unbalance.station]
         unb = (cb.T[4 * node].copy(), cb.T[4 * node + 1].copy())
     amb_rows = [(cb.index(s, "y"), cb.index(s, "z")) for s in stations]
     return LandingSpec(scenario, fe, cb, stations, n_lat, cb.M, cb.K, cb.C, cb.G, cb.gravity_load(),
-                       fe.mass, fe.polar_inertia, i_theta, i_axial, bearings, unb, amb_rows, names)
+                       fe.mass, fe.polar_inertia, i_theta, i_axial, bearings, unb, amb_rows, names,
+                       rotor_laws(scenario))
 
 
 G_ACC = GRAVITY  # m/s^2, re-exported for the force closures

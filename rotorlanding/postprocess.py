@@ -28,12 +28,12 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_constants, harris_palmgren_fast, worn_drag_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
 
-from .forces import OMEGA_REG_HP
+from .params import OMEGA_REG_HP
 from .landing import G_ACC, LandingSpec
 from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
 
@@ -62,8 +62,6 @@ def _trapz_cum(y: np.ndarray, t: np.ndarray) -> np.ndarray:
 def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
     """Time series of forces, torques, powers and energies (SI), keyed by name."""
     sc = spec.scenario
-    eff = sc.effects
-    c = sc.contact
     a = sc.axial
     nt = len(t)
     n_lat = spec.n_lat
@@ -84,11 +82,12 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
         + 0.5 * spec.rotor_mass * xd**2
     epot += 0.5 * np.einsum("ti,ij,tj->t", ql, spec.K, ql) - ql @ spec.f_gravity + axial_potential(x, a)
     power["rotor_damping"] = np.einsum("ti,ij,tj->t", vl, spec.C, vl)
-    if eff["windage"]:
-        tw = np.array([windage_torque(w, sc.spin.c_w1, sc.spin.c_w2) for w in omega])
+    rl = spec.rotor_laws
+    if rl.windage:
+        tw = np.array([windage_torque(w, rl.c_w1, rl.c_w2) for w in omega])
         power["windage"] = -tw * omega
-    if sc.spin.drive == "constant":
-        inp["drive"] = sc.spin.drive_gain * (sc.omega0 - omega) * omega
+    if rl.constant_drive:
+        inp["drive"] = rl.drive_gain * (rl.omega0 - omega) * omega
     amb_on = (t < sc.amb.t_drop) | (not sc.amb.drop_radial)
     for iy, iz in spec.amb_rows:
         for i in (iy, iz):
@@ -105,76 +104,71 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
         inp["unbalance"] = fu * (np.cos(ang) * (vl @ ry) + np.sin(ang) * (vl @ rz))
 
     for b in spec.bearings:
-        p = b.params
         pre = b.name + "_"
         s, r = b.i_station, b.i_race
         o = b.i_outer
         cols = {k: np.zeros(nt) for k in ("contact_force_y_n", "contact_force_z_n", "normal_force_n", "penetration_m",
                                           "slip_velocity_m_s", "rub_force_y_n", "rub_force_z_n", "ball_force_y_n",
                                           "ball_force_z_n", "drag_torque_nm", "ribbon_force_y_n", "ribbon_force_z_n")}
-        kv = c.k_visc if eff["contact_damping"] else 0.0
-        mu = c.mu_rad if eff["radial_friction"] else 0.0
-        eta = p.eta if eff["ribbon_cross_coupling"] else 0.0
-        rub = p.axial_face and eff["axial_rub"]
-        hp = harris_palmgren_constants(p.contact_angle_deg, p.static_load_rating, p.pitch_diameter, p.hp_z, p.hp_y,
-                                       omega_reg=OMEGA_REG_HP)
+        L = b.laws
+        kv, mu, eta, rub, hp = L.k_visc, L.mu_rad, L.eta, L.axial_rub, L.hp
         for k in range(nt):
             qk, vk = q[k], v[k]
             dy, dz = qk[s] - qk[r], qk[s + 1] - qk[r + 1]
             dvy, dvz = vk[s] - vk[r], vk[s + 1] - vk[r + 1]
             wi = vk[r + 2]
-            fy, fz, _, _, fn, delta, vs, pf = radial_contact(dy, dz, dvy, dvz, omega[k], wi, p.clearance, c.k_hertz,
-                                                             c.exponent, kv, mu, c.v_reg, p.sleeve_radius,
-                                                             p.race_radius)
+            fy, fz, _, _, fn, delta, vs, pf = radial_contact(dy, dz, dvy, dvz, omega[k], wi, L.clearance, L.k_hertz,
+                                                             L.exponent, kv, mu, L.v_reg, L.sleeve_radius,
+                                                             L.race_radius)
             cols["contact_force_y_n"][k], cols["contact_force_z_n"][k] = fy, fz
             cols["normal_force_n"][k], cols["slip_velocity_m_s"][k] = fn, vs
             if delta > 0:
                 cols["penetration_m"][k] = delta
                 dist = math.hypot(dy, dz)
                 ddot = (dy * dvy + dz * dvz) / dist
-                el = c.k_hertz * delta**c.exponent
+                el = L.k_hertz * delta**L.exponent
                 power["contact_damping"][k] += (fn - el) * ddot
-                epot[k] += c.k_hertz * delta ** (c.exponent + 1) / (c.exponent + 1)
+                epot[k] += L.k_hertz * delta ** (L.exponent + 1) / (L.exponent + 1)
             power["radial_friction"][k] += pf
-            n_ax = abs(f_ax[k]) if p.axial_face else 0.0
+            n_ax = abs(f_ax[k]) if L.axial_face else 0.0
             if rub and n_ax > 0:
                 al = float(b.tilt_alpha @ qk[:n_lat])
                 be = float(b.tilt_beta @ qk[:n_lat])
                 ry_, rz_, _, _, prub = axial_rub(dy, dz, dvy, dvz, omega[k], wi, al, be, abs(x[k]) - a.cl_ax, n_ax,
-                                                 1.0 if x[k] >= 0 else -1.0, c.mu_ax, c.v_reg_axial, p.face_inner_radius,
-                                                 p.face_outer_radius)
+                                                 1.0 if x[k] >= 0 else -1.0, L.mu_ax, L.v_reg_axial, L.face_inner_radius,
+                                                 L.face_outer_radius)
                 cols["rub_force_y_n"][k], cols["rub_force_z_n"][k] = ry_, rz_
                 power["axial_rub"][k] += prub
             ey, ez = qk[r] - qk[o], qk[r + 1] - qk[o + 1]
             evy, evz = vk[r] - vk[o], vk[r + 1] - vk[o + 1]
-            by, bz = ball_force(ey, ez, p.k_b1, p.k_b2, evy, evz, p.c_b)
+            by, bz = ball_force(ey, ez, L.k_b1, L.k_b2, evy, evz, L.c_b)
             cols["ball_force_y_n"][k], cols["ball_force_z_n"][k] = by, bz
             rr = math.hypot(ey, ez)
-            epot[k] += p.k_b1 * rr * rr / 2 + p.k_b2 * rr**3 / 3
-            power["ball_damping"][k] += p.c_b * (evy * evy + evz * evz)
-            if eff["ball_drag"]:
+            epot[k] += L.k_b1 * rr * rr / 2 + L.k_b2 * rr**3 / 3
+            power["ball_damping"][k] += L.c_b * (evy * evy + evz * evz)
+            if L.ball_drag:
                 thp = harris_palmgren_fast(wi, math.hypot(by, bz), n_ax, hp)
                 cols["drag_torque_nm"][k] = thp
                 power["ball_drag"][k] += -thp * wi
-            if eff["worn_bearing_drag"] and p.worn_drag_torque > 0:
-                tw = worn_drag_torque(wi, p.worn_drag_torque, OMEGA_REG_HP, qk[r + 2], p.worn_drag_growth_angle)
+            if L.worn_drag_torque > 0:
+                tw = worn_drag_torque(wi, L.worn_drag_torque, OMEGA_REG_HP, qk[r + 2], L.worn_drag_growth_angle)
                 cols["drag_torque_nm"][k] += tw
                 power["worn_bearing_drag"][k] += -tw * wi
             oy, oz, ovy, ovz = qk[o], qk[o + 1], vk[o], vk[o + 1]
-            gy, gz = ribbon_force(oy, oz, ovy, ovz, p.k_rib, p.c_rib, eta, c.v_reg)
+            gy, gz = ribbon_force(oy, oz, ovy, ovz, L.k_rib, L.c_rib, eta, L.v_reg)
             cols["ribbon_force_y_n"][k], cols["ribbon_force_z_n"][k] = gy, gz
-            epot[k] += 0.5 * p.k_rib * (oy * oy + oz * oz)
-            power["ribbon_damping"][k] += p.c_rib * (ovy * ovy + ovz * ovz)
-            ccy, ccz = gy + p.c_rib * ovy + p.k_rib * oy, gz + p.c_rib * ovz + p.k_rib * oz
+            epot[k] += 0.5 * L.k_rib * (oy * oy + oz * oz)
+            power["ribbon_damping"][k] += L.c_rib * (ovy * ovy + ovz * ovz)
+            ccy, ccz = gy + L.c_rib * ovy + L.k_rib * oy, gz + L.c_rib * ovz + L.k_rib * oz
             power["ribbon_cross_coupling"][k] += -(ccy * ovy + ccz * ovz)
-            if eff["outer_race_coulomb"] and p.axial_face and n_ax > 0:
-                hy, hz = outer_race_friction(ovy, ovz, n_ax, p.mu_d, c.v_reg)
+            if L.outer_coulomb and n_ax > 0:
+                hy, hz = outer_race_friction(ovy, ovz, n_ax, L.mu_d, L.v_reg)
                 power["outer_race_coulomb"][k] += -(hy * ovy + hz * ovz)
-        power["race_damping"] += p.inner_race_damping * (v[:, r] ** 2 + v[:, r + 1] ** 2) \
-            + p.outer_race_damping * (v[:, o] ** 2 + v[:, o + 1] ** 2)
-        ekin += 0.5 * p.inner_race_mass * (v[:, r] ** 2 + v[:, r + 1] ** 2) + 0.5 * p.inner_race_inertia * v[:, r + 2] ** 2 \
-            + 0.5 * p.outer_race_mass * (v[:, o] ** 2 + v[:, o + 1] ** 2)
-        epot += G_ACC * (p.inner_race_mass * q[:, r + 1] + p.outer_race_mass * q[:, o + 1])
+        power["race_damping"] += L.inner_race_damping * (v[:, r] ** 2 + v[:, r + 1] ** 2) \
+            + L.outer_race_damping * (v[:, o] ** 2 + v[:, o + 1] ** 2)
+        ekin += 0.5 * L.inner_race_mass * (v[:, r] ** 2 + v[:, r + 1] ** 2) + 0.5 * L.inner_race_inertia * v[:, r + 2] ** 2 \
+            + 0.5 * L.outer_race_mass * (v[:, o] ** 2 + v[:, o + 1] ** 2)
+        epot += G_ACC * (L.inner_race_mass * q[:, r + 1] + L.outer_race_mass * q[:, o + 1])
         for key, val in cols.items():
             out[pre + key] = val
         out[pre + "y_m"], out[pre + "z_m"] = q[:, s], q[:, s + 1]

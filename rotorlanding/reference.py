@@ -24,6 +24,7 @@ from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
 
 from .landing import LandingSpec
+from .params import OMEGA_REG_HP
 from .timoshenko import GRAVITY
 
 
@@ -43,13 +44,14 @@ def mass_matrix(spec: LandingSpec) -> np.ndarray:
 
 def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Right-hand side f(t, q, v) of M q'' = f, in the spec's coordinate order."""
-    sc, eff, c, a = spec.scenario, spec.scenario.effects, spec.scenario.contact, spec.scenario.axial
+    sc, a = spec.scenario, spec.scenario.axial
     nl = spec.n_lat
     f = np.zeros(spec.n)
     ql, vl = q[:nl], v[:nl]
     omega = v[spec.i_theta]
     f[:nl] = spec.f_gravity - spec.K @ ql - spec.C @ vl
-    if eff["gyroscopic"]:
+    rl = spec.rotor_laws
+    if rl.gyroscopic:
         f[:nl] -= omega * (spec.G @ vl)
     if t < sc.amb.t_drop or not sc.amb.drop_radial:
         for iy, iz in spec.amb_rows:
@@ -59,31 +61,31 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
         ang = q[spec.i_theta] + math.radians(sc.unbalance.phase_deg)
         fu = sc.unbalance.magnitude * omega**2
         f[:nl] += spec.unbalance_rows[0] * fu * math.cos(ang) + spec.unbalance_rows[1] * fu * math.sin(ang)
-    if eff["windage"]:
-        f[spec.i_theta] += windage_torque(omega, sc.spin.c_w1, sc.spin.c_w2)
-    if sc.spin.drive == "constant":
-        f[spec.i_theta] += sc.spin.drive_gain * (sc.omega0 - omega)
+    if rl.windage:
+        f[spec.i_theta] += windage_torque(omega, rl.c_w1, rl.c_w2)
+    if rl.constant_drive:
+        f[spec.i_theta] += rl.drive_gain * (rl.omega0 - omega)
     x, xd = q[spec.i_axial], v[spec.i_axial]
     f_ax = axial_force(x, xd, a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax)
     f[spec.i_axial] += spec.thrust(t) + f_ax
     if t < sc.amb.t_drop or not sc.amb.drop_axial:
         f[spec.i_axial] += -spec.thrust(t) - sc.amb.axial_stiffness * x - sc.amb.axial_damping * xd
     for b in spec.bearings:
-        p = b.params
+        L = b.laws
         s, r, o = b.i_station, b.i_race, b.i_race + 3
         d = q[s:s + 2] - q[r:r + 2]
         dv = v[s:s + 2] - v[r:r + 2]
         wr = v[r + 2]
         fy, fz, t_rot, t_race = radial_contact(
-            d[0], d[1], dv[0], dv[1], omega, wr, p.clearance, c.k_hertz, c.exponent,
-            c.k_visc if eff["contact_damping"] else 0.0, c.mu_rad if eff["radial_friction"] else 0.0, c.v_reg,
-            p.sleeve_radius, p.race_radius)[:4]
-        n_ax = abs(f_ax) if p.axial_face else 0.0
-        if p.axial_face and eff["axial_rub"] and n_ax > 0:
+            d[0], d[1], dv[0], dv[1], omega, wr, L.clearance, L.k_hertz, L.exponent,
+            L.k_visc, L.mu_rad, L.v_reg,
+            L.sleeve_radius, L.race_radius)[:4]
+        n_ax = abs(f_ax) if L.axial_face else 0.0
+        if L.axial_rub and n_ax > 0:
             al, be = float(b.tilt_alpha @ ql), float(b.tilt_beta @ ql)
             gy, gz, gr, gi = axial_rub(d[0], d[1], dv[0], dv[1], omega, wr, al, be, abs(x) - a.cl_ax, n_ax,
-                                       1.0 if x >= 0 else -1.0, c.mu_ax, c.v_reg_axial, p.face_inner_radius,
-                                       p.face_outer_radius)[:4]
+                                       1.0 if x >= 0 else -1.0, L.mu_ax, L.v_reg_axial, L.face_inner_radius,
+                                       L.face_outer_radius)[:4]
             fy, fz, t_rot, t_race = fy + gy, fz + gz, t_rot + gr, t_race + gi
         f[s] += fy
         f[s + 1] += fz
@@ -93,29 +95,28 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
         f[r + 2] += t_race
         e = q[r:r + 2] - q[o:o + 2]
         ev = v[r:r + 2] - v[o:o + 2]
-        by, bz = ball_force(e[0], e[1], p.k_b1, p.k_b2, ev[0], ev[1], p.c_b)
+        by, bz = ball_force(e[0], e[1], L.k_b1, L.k_b2, ev[0], ev[1], L.c_b)
         f[r] += by
         f[r + 1] += bz
         f[o] -= by
         f[o + 1] -= bz
-        if eff["ball_drag"]:
-            f[r + 2] += harris_palmgren_torque(wr, math.hypot(by, bz), n_ax, contact_angle_deg=p.contact_angle_deg,
-                                               C_s=p.static_load_rating, d_m=p.pitch_diameter, z_hp=p.hp_z,
-                                               y_hp=p.hp_y, omega_reg=0.1)
-        if eff["worn_bearing_drag"]:
-            f[r + 2] += worn_drag_torque(wr, p.worn_drag_torque, 0.1, q[r + 2], p.worn_drag_growth_angle)
-        hy, hz = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], p.k_rib, p.c_rib,
-                              p.eta if eff["ribbon_cross_coupling"] else 0.0, c.v_reg)
+        if L.ball_drag:
+            f[r + 2] += harris_palmgren_torque(wr, math.hypot(by, bz), n_ax, contact_angle_deg=L.contact_angle_deg,
+                                               C_s=L.static_load_rating, d_m=L.pitch_diameter, z_hp=L.hp_z,
+                                               y_hp=L.hp_y, omega_reg=OMEGA_REG_HP)
+        if L.worn_drag_torque:
+            f[r + 2] += worn_drag_torque(wr, L.worn_drag_torque, OMEGA_REG_HP, q[r + 2], L.worn_drag_growth_angle)
+        hy, hz = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], L.k_rib, L.c_rib, L.eta, L.v_reg)
         f[o] += hy
         f[o + 1] += hz
-        if eff["outer_race_coulomb"] and p.axial_face and n_ax > 0:
-            ky, kz = outer_race_friction(v[o], v[o + 1], n_ax, p.mu_d, c.v_reg)
+        if L.outer_coulomb and n_ax > 0:
+            ky, kz = outer_race_friction(v[o], v[o + 1], n_ax, L.mu_d, L.v_reg)
             f[o] += ky
             f[o + 1] += kz
-        f[r:r + 2] -= p.inner_race_damping * v[r:r + 2]
-        f[o:o + 2] -= p.outer_race_damping * v[o:o + 2]
-        f[r + 1] -= p.inner_race_mass * GRAVITY
-        f[o + 1] -= p.outer_race_mass * GRAVITY
+        f[r:r + 2] -= L.inner_race_damping * v[r:r + 2]
+        f[o:o + 2] -= L.outer_race_damping * v[o:o + 2]
+        f[r + 1] -= L.inner_race_mass * GRAVITY
+        f[o + 1] -= L.outer_race_mass * GRAVITY
     return f
 
 

@@ -35,7 +35,7 @@ from scipy.linalg import cho_factor, cho_solve
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque
+from user_forces.ball_bearing import OMEGA_REG_DEFAULT, ball_force, harris_palmgren_torque, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -138,11 +138,11 @@ def reference_forces(spec, *, rub_v_reg: str = "v_reg_axial"):
             if eff["ball_drag"]:
                 thp = harris_palmgren_torque(om_i, math.hypot(fb[0], fb[1]), N,
                                              contact_angle_deg=p.contact_angle_deg, C_s=p.static_load_rating,
-                                             d_m=p.pitch_diameter, z_hp=p.hp_z, y_hp=p.hp_y, omega_reg=0.1)
+                                             d_m=p.pitch_diameter, z_hp=p.hp_z, y_hp=p.hp_y, omega_reg=OMEGA_REG_DEFAULT)
                 parts[b.name + ".hp"] = thp
                 f[r + 2] += thp
             if eff["worn_bearing_drag"]:
-                f[r + 2] += worn_drag_torque(om_i, p.worn_drag_torque, 0.1, q[r + 2], p.worn_drag_growth_angle)
+                f[r + 2] += worn_drag_torque(om_i, p.worn_drag_torque, OMEGA_REG_DEFAULT, q[r + 2], p.worn_drag_growth_angle)
             # ribbon + Coulomb on the outer race
             fr = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], p.k_rib, p.c_rib,
                               p.eta if eff["ribbon_cross_coupling"] else 0.0, c.v_reg)
