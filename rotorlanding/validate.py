@@ -438,7 +438,43 @@ def rig_checks(rig=None) -> list[dict]:
                                "of their widths from either end",
                        "ours": where, "margin": margin, "se": None, "within_noise": False,
                        "source": None if b is None else b.source})
+    checks.append(rig_value_check(rig))
     return checks
+
+
+def rig_value_check(rig=None) -> dict:
+    """Every other bounded rig value (not calibrated: chosen from the paper, a catalogue or a
+    derivation) inside its sourced bound, in every paper scenario that sets it. Ends count as
+    inside: a catalogue value may define a bound's end; only calibrated values must keep clear."""
+    from .config import get_dotted
+    from .scenario import load_scenario
+
+    calibrated = calibrated_keys()
+    values: dict[str, dict] = {}
+    for case, (fname, sets) in CASES.items():
+        sc = load_scenario(paper_dir() / fname, sets, overlays=[rig] if rig else ())
+        for key, b in sc.bounds.items():
+            if key in calibrated:
+                continue
+            try:
+                value = float(get_dotted(sc.raw, key))
+            except (InputError, TypeError, ValueError):
+                continue  # not a parameter of this rig
+            entry = values.setdefault(key, {"bound": b, "values": set()})
+            entry["values"].add(value)
+    outside = [f"{key} = {v:.4g} outside [{e['bound'].min:.4g}, {e['bound'].max:.4g}]"
+               for key, e in sorted(values.items()) for v in sorted(e["values"])
+               if not e["bound"].min <= v <= e["bound"].max]
+    n = len(values)
+    return {"group": "rig", "check": "every other rig value inside its sourced bound",
+            "parameter": "every other bounded value", "fitted_by": "not fitted (paper, catalogue, derivation)",
+            "pass": n > 0 and not outside,
+            "rule": "each bounded value that no calibration set (paper, catalogue or derived) lies inside its bound "
+                    "in every paper scenario",
+            "ours": (f"{n - len({o.split(' =')[0] for o in outside})} of {n} bounded values inside"
+                     + (": " + "; ".join(outside) if outside else "")),
+            "margin": None, "se": None, "within_noise": False,
+            "source": "the [bounds] tables of scenarios/rig/rig.toml, scenarios/rig_rotor.toml and the paper scenarios"}
 
 
 #: the ribbon check's threshold: the relative frequency shift a +/-50 % ribbon change must make
@@ -581,12 +617,13 @@ def report_markdown(result: dict) -> str:
         lines += ["Not run: no held-out fit in `scenarios/calibration/holdout/` (or another rig rotor was given)."]
     rig = [c for c in ev["checks"] if c["group"] == "rig"]
     if rig:
-        lines += ["", "## The rig: every calibrated parameter inside its physical bound", "",
+        lines += ["", "## The rig: every calibrated parameter inside its physical bound, every other value inside its own", "",
                   "Bounds and their sources are written in the rig files (`[bounds]` of `scenarios/rig_rotor.toml`, "
                   "`scenarios/rig/rig.toml` and the backward scenario).", "",
                   "| parameter | fitted by | value, bound, position | verdict | source of the bound |", "|---|---|---|---|---|"]
         for c in rig:
-            lines.append(f"| `{c['check'].split()[0]}` | {c['rule'].split(';')[0].removeprefix('fitted by ')} | "
+            lines.append(f"| {c.get('parameter', '`' + c['check'].split()[0] + '`')} | "
+                         f"{c.get('fitted_by', c['rule'].split(';')[0].removeprefix('fitted by '))} | "
                          f"{c['ours']} | {_verdict(c)} | {c['source'] or '-'} |")
     rib = [k for k in ensembles if k.startswith("ribbon_")]
     if rib:

@@ -64,12 +64,23 @@ def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
 
     rng = {"min": 0.2, "max": 3.2}
     monkeypatch.setattr(v, "calibrated_keys", lambda: {"bearings.DE.worn_drag_torque": ("space.toml", rng)})
-    (ok,) = v.rig_checks()
+    ok, _ = v.rig_checks()
     assert ok["pass"] and ok["source"].startswith("min: healthy")
     value = load_scenario(PAPER / "backward_whirl_landing.toml").bearings["DE"].worn_drag_torque
     rng["max"] = value * 1.001  # the calibrated value now presses on the search range's end
-    (on,) = v.rig_checks()
+    on, _ = v.rig_checks()
     assert not on["pass"] and on["margin"] < 0
     rng.update(min=0.01, max=3.2)  # the search range reaches outside the physical bound
-    (out,) = v.rig_checks()
+    out, _ = v.rig_checks()
     assert not out["pass"] and "outside the bound" in out["ours"]
+
+
+def test_rig_value_check_flags_an_uncalibrated_value_outside_its_bound(tmp_path):
+    import rotorlanding.validate as v
+
+    good = v.rig_value_check()
+    assert good["pass"] and good["ours"].startswith(f"{good['ours'].split(' of ')[1].split()[0]} of ")
+    overlay = tmp_path / "rig.toml"
+    overlay.write_text("[contact]\nmu_ax = 0.95\n")  # steel on steel: the bound ends at 0.8
+    bad = v.rig_value_check(str(overlay))
+    assert not bad["pass"] and "contact.mu_ax = 0.95 outside [0.04, 0.8]" in bad["ours"]
