@@ -48,7 +48,7 @@ import numpy as np
 from .config import Table, load_toml
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
-from .validate import PAPER, paper_dir
+from .validate import paper, paper_dir
 
 #: s, the onset change between steps h and h/2 that an ensemble may show without its noise
 ONSET_TOL_S = 0.05
@@ -139,7 +139,7 @@ def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
     is added as ``bw_persist``. ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
     the share of its drops that whirl, as ``bw015_whirls``."""
     parts = {}
-    for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[PAPER["fig39"][k] for k in
+    for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[paper()["fig39"][k] for k in
                                                                     ("speed_rpm", "experimental_hz")]):
         if case not in cases:
             continue
@@ -147,9 +147,9 @@ def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
         parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
     r = res.get("fw7000", {})
     if "fw7000" in cases and r.get("force_max_n"):
-        parts["force"] = min(1.0, abs(r["force_max_n"] / PAPER["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
+        parts["force"] = min(1.0, abs(r["force_max_n"] / paper()["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
     b = res.get("bw", {})
-    t1 = PAPER["table1"]["experimental"]
+    t1 = paper()["table1"]["experimental"]
     if "bw" in cases and b.get("direction") == "backward":
         parts["bw_freq"] = abs(b["frequency_hz"] - t1["frequency_hz"]) / t1["frequency_hz"]
         parts["bw_onset"] = min(1.0, abs(b["onset_s"] - t1["onset_s"]) / t1["onset_s"])

@@ -14,6 +14,7 @@ calibrated values against their sourced bounds (``evaluate_cases``, ``rig_checks
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import os
@@ -41,15 +42,14 @@ def paper_dir() -> Path:
     return project_root() / "scenarios" / "paper"
 
 #: values read off the paper (Tables 1-2, Fig. 39); displacements in m, forces in N
-PAPER = {
-    "table1": {"simulated": {"v_disp_max_m": 0.25e-3, "v_disp_min_m": -0.28e-3, "onset_s": 0.4, "frequency_hz": 51.0},
-               "experimental": {"v_disp_max_m": 0.2e-3, "v_disp_min_m": -0.4e-3, "onset_s": 0.4, "frequency_hz": 49.0}},
-    "table2": {"simulated": {"v_disp_max_m": 0.2e-3, "v_disp_min_m": -0.28e-3, "v_force_max_n": 4.5e3,
-                             "v_force_min_n": -1.5e3},
-               "experimental": {"v_disp_max_m": 0.15e-3, "v_disp_min_m": -0.3e-3, "v_force_max_n": 4.5e3,
-                                "v_force_min_n": -0.5e3}},
-    "fig39": {"speed_rpm": [3000, 7000, 10000], "simulated_hz": [50.0, 67.0, 80.0], "experimental_hz": [48.0, 65.0, 77.0]},
-}
+@functools.lru_cache(maxsize=None)
+def paper() -> dict:
+    """The paper's Tables 1-2 and Fig. 39 numbers, from ``scenarios/paper/reference.toml`` (data,
+    not code: every consumer reads the same file)."""
+    from .config import load_toml
+
+    return load_toml(paper_dir() / "reference.toml")
+
 
 CASES = {
     "no_whirl": ("no_whirl_landing.toml", []),
@@ -124,7 +124,7 @@ def studies(rig=None) -> dict:
     for field, factor in RIBBON_VARIANTS:
         out[_ribbon_key(field, factor)] = (fw_file, list(fw_sets) + [
             f"bearings.{b}.{field}={getattr(bb, field) * factor!r}" for b, bb in fw.bearings.items()])
-    for rpm in PAPER["fig39"]["speed_rpm"]:
+    for rpm in paper()["fig39"]["speed_rpm"]:
         sets = _holdout_sets(rpm)
         if sets is not None and rig is None:  # the held-out fits are of the rig rotor
             fname, base = CASES[f"forward_{rpm}"]
@@ -192,9 +192,9 @@ TABLE_ROWS = [
 def _paper_values(table: str, key) -> tuple[float, float]:
     """(paper simulated, paper experimental) of a table entry (Fig. 39: key = speed in rpm)."""
     if table == "fig39":
-        k = PAPER["fig39"]["speed_rpm"].index(key)
-        return PAPER["fig39"]["simulated_hz"][k], PAPER["fig39"]["experimental_hz"][k]
-    return PAPER[table]["simulated"][key], PAPER[table]["experimental"][key]
+        k = paper()["fig39"]["speed_rpm"].index(key)
+        return paper()["fig39"]["simulated_hz"][k], paper()["fig39"]["experimental_hz"][k]
+    return paper()[table]["simulated"][key], paper()[table]["experimental"][key]
 
 
 def band(simulated: float, experimental: float) -> float:
@@ -340,10 +340,10 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
     if "backward_mu_0.15" in s or "backward_mu_0.15" in ensembles:
         classes("backward_mu_0.15", "none", "mu_rad switch: the same bearing at mu_rad 0.15 is calm",
                 "no whirl at any bearing")["provenance"] = prov["switch_calm"]
-    for rpm in PAPER["fig39"]["speed_rpm"]:
+    for rpm in paper()["fig39"]["speed_rpm"]:
         classes(f"forward_{rpm}", "forward", f"combined landing {rpm} rpm whirls forward at the DE",
                 "the DE journal whirls forward (the paper measured the DE)", where="DE")
-    freqs = [_value(_judged(s, ensembles, f"forward_{r}")[0], "fig39", r)[0] for r in PAPER["fig39"]["speed_rpm"]]
+    freqs = [_value(_judged(s, ensembles, f"forward_{r}")[0], "fig39", r)[0] for r in paper()["fig39"]["speed_rpm"]]
     check("cause", "forward whirl frequency rises with speed (DE)", "f(3000) < f(7000) < f(10000)",
           all(f is not None for f in freqs) and freqs[0] < freqs[1] < freqs[2], ours=freqs)
     classes("forward_7000_no_axial_rub", {"none", "backward"}, "axial rub causes the forward whirl",
@@ -356,7 +356,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
               rib["max_shift"] is not None and rib["max_shift"] >= RIBBON_SHIFT,
               margin=None if rib["max_shift"] is None else rib["max_shift"] - RIBBON_SHIFT, ours=rib["text"],
               se=rib["se"])
-    for rpm in PAPER["fig39"]["speed_rpm"]:
+    for rpm in paper()["fig39"]["speed_rpm"]:
         key = f"heldout_{rpm}"
         if key not in ensembles and key not in s:
             continue
@@ -660,7 +660,7 @@ def report_markdown(result: dict) -> str:
                       f"{lo:.3g} and {hi:.3g} s (median {bw['onset_s']:.3g} s"
                       + (f", standard error of the median {se:.2g} s" if se is not None else "") + "). "
                       + _onset_note(), ""]
-    for rpm in PAPER["fig39"]["speed_rpm"]:
+    for rpm in paper()["fig39"]["speed_rpm"]:
         e = ensembles.get(f"forward_{rpm}")
         if e and e["direction"] == "forward" and _elsewhere(e):
             lines += ["", f"At {rpm} rpm the rotor whirls forward at the {_elsewhere(e)} journal in "
@@ -713,7 +713,7 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     from .results import read_results
 
     files = []
-    fig = PAPER["fig39"]
+    fig = paper()["fig39"]
     f, ax = plt.subplots(figsize=(6.5, 4.5))
     ax.plot(fig["speed_rpm"], fig["experimental_hz"], "ko", ms=8, label="paper experimental (Fig. 39)")
     ax.plot(fig["speed_rpm"], fig["simulated_hz"], "bs", mfc="none", ms=8, label="paper simulated")
@@ -811,7 +811,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, docs: bool = Tru
     ensembles = {key: {**ensemble_stats(m), "members": m} for key, m in members.items()}
     result = {"version": __version__, "quick": quick, "rig_overlay": rig,
               "t_end_note": f"{QUICK_T_END} s each (--quick)" if quick else "full length (scenario t_end)",
-              "paper": PAPER, "cases": summaries, "ensembles": ensembles,
+              "paper": paper(), "cases": summaries, "ensembles": ensembles,
               "run": {"wall_s": round(time.perf_counter() - wall0, 1), "workers": workers,
                       "cpus": os.cpu_count(), "python": platform.python_version(), "landings": len(jobs),
                       "case_wall_s": {k: round(v.get("performance", {}).get("wall_s", float("nan")), 2)

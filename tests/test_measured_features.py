@@ -131,11 +131,11 @@ def test_table_scales_follow_the_extraction_rules():
 
 def test_paper_table_agrees_with_validate_paper(tmp_path):
     from rotorlanding.features import features_from_table
-    from rotorlanding.validate import PAPER
+    from rotorlanding.validate import paper
 
     root = Path(__file__).resolve().parents[1]
     m = load_measurement(root / "scenarios" / "measured" / "paper_table2_fig39.toml")
-    fig, t2 = PAPER["fig39"], PAPER["table2"]["experimental"]
+    fig, t2 = paper()["fig39"], paper()["table2"]["experimental"]
     assert [p.overrides for p in m.points] == [[f"operating.speed_rpm={float(r)!r}"] for r in fig["speed_rpm"]]
     assert [p.features["whirl_frequency_hz"] for p in m.points] == fig["experimental_hz"]
     assert all(p.features["whirl_direction"] == "forward" for p in m.points)
