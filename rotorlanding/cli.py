@@ -189,7 +189,9 @@ def cmd_validate(args) -> int:
         raise InputError("--workers", args.workers, "must be >= 1")
     if args.rig is not None and not Path(args.rig).is_file():
         raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
-    res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig)
+    if args.publish is not None and not Path(args.publish).is_dir():
+        raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
+    res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig, publish=args.publish)
     ev = res["evaluation"]
     for c in ev["checks"]:
         print(check_line(c))
@@ -356,11 +358,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     va = sub.add_parser("validate", help="run the paper's landings and write the validation report")
     va.add_argument("--out", default="validation", help="output folder (default ./validation)")
-    va.add_argument("--quick", action="store_true", help="0.5 s runs (no docs/validation.md update)")
+    va.add_argument("--quick", action="store_true", help="0.5 s runs")
+    va.add_argument("--publish", default=None, metavar="DIR",
+                    help="also write the report to DIR/validation.md (DIR/validation_<rig stem>.md with --rig), "
+                         "e.g. --publish docs to regenerate the checkout's docs/validation.md")
     va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
     va.add_argument("--rig", default=None, help="rotor/rig TOML merged on top of every paper scenario "
-                                                "(e.g. scenarios/rig_rotor_first.toml); report to "
-                                                "docs/validation_<stem>.md")
+                                                "(e.g. scenarios/rig_rotor_first.toml)")
     va.set_defaults(func=cmd_validate)
 
     an = sub.add_parser("animate", help="render a results.h5 offline with Exudyn's raytracer into a GIF")

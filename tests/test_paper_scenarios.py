@@ -73,7 +73,7 @@ def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_is_the_cause_sho
 def test_full_paper_validation(tmp_path):
     from rotorlanding.validate import validate
 
-    res = validate(tmp_path, docs=False)
+    res = validate(tmp_path)
     failed = [c["check"] for c in res["evaluation"]["checks"] if not c["pass"]]
     assert not failed, failed
 
