@@ -22,11 +22,12 @@ def test_bound_position_linear_and_log():
     assert Bound(1.0, 100.0, "s", log=True).position(10.0) == pytest.approx(0.5)
 
 
+# a key the rig files give no bound: a bound there would be merged into the table written here
 @pytest.mark.parametrize("text, field", [
-    ('"axial.c_ax" = {min = 0.5, max = 0.1, source = "x"}', "bounds.axial.c_ax"),
-    ('"axial.c_ax" = {min = 0.0, max = 1.0}', "bounds.axial.c_ax"),
-    ('"axial.c_ax" = {min = 0.0, max = 1.0, source = " "}', "bounds.axial.c_ax.source"),
-    ('"axial.c_ax" = {min = 0.0, max = 1.0, source = "x", log = true}', "bounds.axial.c_ax"),
+    ('"solver.spectral_radius" = {min = 0.5, max = 0.1, source = "x"}', "bounds.solver.spectral_radius"),
+    ('"solver.spectral_radius" = {min = 0.0, max = 1.0}', "bounds.solver.spectral_radius"),
+    ('"solver.spectral_radius" = {min = 0.0, max = 1.0, source = " "}', "bounds.solver.spectral_radius.source"),
+    ('"solver.spectral_radius" = {min = 0.0, max = 1.0, source = "x", log = true}', "bounds.solver.spectral_radius"),
     ('"bearings.DE" = {min = 0.0, max = 1.0, source = "x"}', "bounds.bearings.DE"),
 ])
 def test_bad_bound_names_the_field(tmp_path, text, field):
