@@ -79,9 +79,13 @@ def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
 def test_rig_value_check_flags_an_uncalibrated_value_outside_its_bound(tmp_path):
     import rotorlanding.validate as v
 
-    good = v.rig_value_check()
-    assert good["pass"] and good["ours"].startswith(f"{good['ours'].split(' of ')[1].split()[0]} of ")
     overlay = tmp_path / "rig.toml"
     overlay.write_text("[contact]\nmu_ax = 0.95\n")  # steel on steel: the bound ends at 0.8
     bad = v.rig_value_check(str(overlay))
     assert not bad["pass"] and "contact.mu_ax = 0.95 outside [0.04, 0.8]" in bad["ours"]
+    overlay.write_text("[contact]\nmu_ax = 0.5\n")
+    ok = v.rig_value_check(str(overlay))
+    assert "contact.mu_ax" not in ok["ours"]
+    n_in, n = (int(w) for w in ok["ours"].split(" bounded")[0].split(" of "))
+    assert n > 20 and n_in == n - len({o.split(" =")[0] for o in ok["ours"].split(": ", 1)[1].split("; ")}) \
+        if n_in < n else ok["pass"]
