@@ -124,17 +124,16 @@ def _load_case(path: str, overrides):
     if path.endswith(".h5"):
         from pathlib import Path
 
-        from .config import parse_value, set_dotted
-        from .results import read_results
+        from .config import parse_value, set_dotted, split_override
+        from .readers import read_results_guarded
 
-        if not Path(path).is_file():
-            raise InputError("file", path, "file not found")
-        data = read_results(path)["scenario"]
+        data = read_results_guarded(path, ("scenario",), field="scenario")["scenario"]
         for item in overrides or []:
-            if "=" not in item:
-                raise InputError("--set", item, "must look like dotted.key=value")
-            key, text = item.split("=", 1)
-            set_dotted(data, key.strip(), parse_value(text.strip()))
+            key, text = split_override(item)
+            try:
+                set_dotted(data, key, parse_value(text))
+            except InputError as err:
+                raise InputError(f"--set {key}", text, err.allowed) from None
         return scenario_from_dict(data, source=path)
     return load_scenario(path, overrides)
 
@@ -217,6 +216,11 @@ def cmd_sweep(args) -> int:
           f"map: {args.out}/whirl_map.png")
     for r in failed:
         print(f"  case {r['case']}: {r['status']}: {r['error']}")
+    if rows and len(failed) == len(rows):
+        print(f"rotorlanding: every one of the {len(rows)} cases failed", file=sys.stderr)
+        return 1
+    if failed:  # the others are results; the count goes to stderr as well, where scripts look
+        print(f"rotorlanding: warning: {len(failed)} of {len(rows)} cases failed", file=sys.stderr)
     return 0
 
 
@@ -297,6 +301,14 @@ def cmd_calibrate(args) -> int:
     from .calibrate import calibrate
 
     rows = calibrate(args.space, args.out, workers=args.workers)
+    failed = sum(1 for r in rows if r.get("failed_landings"))
+    if failed == len(rows):
+        print(f"rotorlanding: every one of the {len(rows)} designs had a landing that failed "
+              f"(errors: {args.out}/calibration.json); no best design", file=sys.stderr)
+        return 1
+    if failed:
+        print(f"rotorlanding: warning: {failed} of {len(rows)} designs had a landing that failed "
+              f"(failed_landings in {args.out}/calibration.csv)", file=sys.stderr)
     best = rows[0]
     from .calibrate import design_overrides
 

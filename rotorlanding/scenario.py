@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted
+from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted, split_override
 from .errors import InputError
 from .rotor import Rotor, rotor_from_dict
 
@@ -383,14 +383,11 @@ def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scen
     except InputError as err:
         raise err.with_file(str(path)) from None
     for item in overrides or []:
-        if "=" not in item:
-            raise InputError("--set", item, "must look like dotted.key=value")
-        key, text = item.split("=", 1)
-        key = key.strip()
+        key, text = split_override(item)
         try:
             # effects may be absent from the file yet are known switches with defaults
-            set_dotted(data, key, parse_value(text.strip()),
+            set_dotted(data, key, parse_value(text),
                        must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
         except InputError as err:
-            raise InputError(f"--set {key}", text.strip(), err.allowed) from None
+            raise InputError(f"--set {key}", text, err.allowed) from None
     return scenario_from_dict(data, source=str(path))
