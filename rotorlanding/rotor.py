@@ -21,6 +21,21 @@ from .config import load_toml
 from .errors import InputError
 
 
+#: Physical plausibility limits of rotor values (docs/rotor_file.md, "Plausibility limits"): beyond
+#: them no real rotor exists and a run would only produce numbers.
+#: kg/m^3: osmium (22 590 kg/m^3) is the densest element
+MAX_DENSITY = 22600.0
+#: Pa: diamond (about 1.05e12 Pa) is the stiffest known material
+MAX_YOUNGS_MODULUS = 1.2e12
+#: kg: a disk heavier than 100 t; the largest rotors on magnetic bearings (turbo-compressors) weigh
+#: a few tonnes, large turbine-generator rotors (not magnetically levitated) up to ~300 t per piece
+MAX_DISK_MASS = 1.0e5
+#: Pa: ultimate strength of the strongest structural steels (maraging steel grade 350: ~2.4 GPa).
+#: A solid disk, the least stressed rotating shape, reaches it at its centre at the rim speed
+#: v = sqrt(8 sigma / ((3 + nu) rho)) (Timoshenko & Goodier, rotating disks): 880 m/s in steel
+MAX_STRENGTH = 2.5e9
+
+
 @dataclass(frozen=True)
 class Material:
     name: str
@@ -95,10 +110,41 @@ class Rotor:
     def length(self) -> float:
         return sum(s.length for s in self.sections)
 
+    @property
+    def mass(self) -> float:
+        """kg: shaft sections and disks."""
+        return sum(s.area * s.length * s.material.density for s in self.sections) + sum(d.mass for d in self.disks)
+
+    def burst_speed_rpm(self) -> tuple[float, str]:
+        """(speed [rpm], part) at which the first part would burst even if made of the strongest
+        steel: the rim speed of a section (outer radius) or disk (radius of gyration sqrt(Ip/m),
+        a lower bound of its rim radius) reaches sqrt(8 sigma_u / ((3 + nu) rho)) (solid disk, the
+        least stressed rotating shape). Disks carry no material: the rotor's lightest is taken."""
+        def v_burst(m: Material) -> float:
+            return math.sqrt(8.0 * MAX_STRENGTH / ((3.0 + m.poisson_ratio) * m.density))
+
+        best = (math.inf, "")
+        for i, s in enumerate(self.sections):
+            omega = v_burst(s.material) / (s.outer_diameter / 2.0)
+            best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.outer_diameter:g} m)"))
+        if self.disks:
+            light = min((s.material for s in self.sections), key=lambda m: m.density)
+            for i, d in enumerate(self.disks):
+                if d.mass > 0 and d.polar_inertia > 0:
+                    k = math.sqrt(d.polar_inertia / d.mass)
+                    omega = v_burst(light) / k
+                    best = min(best, (omega * 30.0 / math.pi, f"rotor.disks[{i}] '{d.name}' (radius of gyration {k:.3g} m)"))
+        return best
+
 
 def _material(name: str, t: _Table) -> Material:
     e = t.number("youngs_modulus", positive=True)
+    if e > MAX_YOUNGS_MODULUS:
+        raise InputError(f"{t.path}.youngs_modulus", e, f"must be <= {MAX_YOUNGS_MODULUS:g} Pa (diamond, the stiffest "
+                         "known material)")
     rho = t.number("density", positive=True)
+    if rho > MAX_DENSITY:
+        raise InputError(f"{t.path}.density", rho, f"must be <= {MAX_DENSITY:g} kg/m^3 (osmium, the densest element)")
     has_nu, has_g = t.has("poisson_ratio"), t.has("shear_modulus")
     if not (has_nu or has_g):
         raise InputError(f"{t.path}.poisson_ratio", None, "missing: give poisson_ratio or shear_modulus")
@@ -204,6 +250,9 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
             ip = d.number("polar_inertia", nonnegative=True)
             it = d.number("transverse_inertia", nonnegative=True)
         d.finish()
+        if mass > MAX_DISK_MASS:
+            raise InputError(f"{d.path}.mass", mass, f"must be <= {MAX_DISK_MASS:g} kg (100 t: heavier than any rotor "
+                             "on magnetic bearings; see docs/rotor_file.md)")
         disks.append(Disk(name=disk_name, position=x, mass=mass, polar_inertia=ip, transverse_inertia=it))
 
     def station_name(t: _Table, key: str) -> str:

@@ -45,6 +45,28 @@ EFFECTS = {
 
 BEARING_NAMES = ("DE", "NDE")
 
+# Physical plausibility limits (docs/scenario_file.md, "Plausibility limits"): a value beyond one is
+# not a rig that exists, and the solver would either stop or, worse, finish with numbers that mean
+# nothing. Each limit is set where the physics ends, not at the edge of today's rig, so unusual but
+# real machines pass; rotor limits (density, stiffness, disk mass, burst speed) live in rotor.py.
+
+#: -: friction coefficients (mu_rad, mu_ax, mu_d and the ribbon's friction ratio eta). Clean
+#: unlubricated metals in air show 0.5-1.5 (ASM Handbook Vol. 18, Friction, Lubrication and Wear
+#: Technology; steel on steel 0.6-0.8 dry); beyond ~2 only atomically clean surfaces in vacuum,
+#: i.e. seizure, which a Coulomb law does not describe
+MAX_FRICTION = 2.0
+#: -: radial clearance / sleeve radius. Catcher-bearing clearances are 0.1-1 % of the journal radius
+#: (about half the AMB air gap); the contact model (Hertz contact of nearly conforming circles,
+#: small journal excursions) is meaningless long before the clearance reaches 10 % of the radius
+MAX_CLEARANCE_RATIO = 0.1
+#: -: k h^2 / m (and c h / m) of a spring (damper) on the lightest body it acts on. Above 1e6 the
+#: body's inertia term in the Newton matrix, M / (beta h^2) + C gamma / (beta h) + K, is below the
+#: Newton tolerance (1e-6 relative): the solver no longer sees the body move, the spring is a rigid
+#: link the solver cannot resolve with this solver.step
+MAX_STEP_RATIO = 1.0e6
+#: s: one day of simulated time; a landing lasts seconds, a coast-down to rest minutes to hours
+MAX_T_END = 86400.0
+
 
 @dataclass(frozen=True)
 class Bearing:
@@ -368,8 +390,99 @@ def _scenario(data: dict, source, name) -> Scenario:
     if solver.output_period < solver.step:
         raise InputError("solver.output_period", solver.output_period, f"must be >= solver.step ({solver.step} s)")
     top.finish()
-    return Scenario(title, rotor, bearings, contact, axial, amb, spin, unbalance, effects, speed, t_end, solver,
-                    raw=data, source=source, bounds=bounds)
+    sc = Scenario(title, rotor, bearings, contact, axial, amb, spin, unbalance, effects, speed, t_end, solver,
+                  raw=data, source=source, bounds=bounds)
+    _plausible(sc)
+    return sc
+
+
+def _plausible(sc: Scenario) -> None:
+    """Physical plausibility limits of a scenario (module constants above, with their reasons)."""
+    from .rotor import MAX_DENSITY
+    from .timoshenko import GRAVITY
+
+    h = sc.solver.step
+
+    def friction(field_, mu):
+        if mu > MAX_FRICTION:
+            raise InputError(field_, mu, f"a friction coefficient must lie in [0, {MAX_FRICTION:g}] (clean dry metals "
+                             "in air: 0.5-1.5; beyond that is seizure, not Coulomb friction)")
+
+    def stiff(field_, k, m, body, unit="N/m"):
+        if k * h * h / m > MAX_STEP_RATIO:
+            raise InputError(field_, k, f"must be <= {MAX_STEP_RATIO * m / h ** 2:.3g} {unit} here: on the {body} "
+                             f"({m:.3g} kg) with solver.step = {h:g} s its inertia is below the Newton tolerance "
+                             f"(k h^2/m <= {MAX_STEP_RATIO:g}); a rigid link the solver cannot resolve")
+
+    def damp(field_, c, m, body):
+        if c * h / m > MAX_STEP_RATIO:
+            raise InputError(field_, c, f"must be <= {MAX_STEP_RATIO * m / h:.3g} N s/m here: on the {body} "
+                             f"({m:.3g} kg) with solver.step = {h:g} s its inertia is below the Newton tolerance "
+                             f"(c h/m <= {MAX_STEP_RATIO:g})")
+
+    for b in sc.bearings.values():
+        p = f"bearings.{b.name}"
+        if b.clearance > MAX_CLEARANCE_RATIO * b.sleeve_radius:
+            raise InputError(f"{p}.clearance", b.clearance, f"must be <= {MAX_CLEARANCE_RATIO:g} x sleeve_radius "
+                             f"({MAX_CLEARANCE_RATIO * b.sleeve_radius:.3g} m): catcher-bearing clearances are "
+                             "0.1-1 % of the journal radius")
+        r_i, r_p = b.race_radius, b.pitch_diameter / 2.0
+        if not r_p > r_i:
+            raise InputError(f"{p}.pitch_diameter", b.pitch_diameter, f"must be > the bore diameter 2 (sleeve_radius + "
+                             f"clearance) = {2 * r_i:.4g} m: the balls run outside the inner race's bore")
+        # the most a race can weigh: the densest element filling the space from the bore to the
+        # pitch circle (inner) or from the pitch circle to twice its radius (outer, with what moves
+        # with it), as wide as the pitch diameter (wider than any rolling bearing)
+        m_in = MAX_DENSITY * math.pi * (r_p ** 2 - r_i ** 2) * 2.0 * r_p
+        m_out = MAX_DENSITY * math.pi * 3.0 * r_p ** 2 * 2.0 * r_p
+        for key, m, cap in (("inner_race_mass", b.inner_race_mass, m_in), ("outer_race_mass", b.outer_race_mass, m_out)):
+            if m > cap:
+                raise InputError(f"{p}.{key}", m, f"must be <= {cap:.3g} kg: a ring of the densest element (osmium) "
+                                 "that fills the bearing's envelope (pitch_diameter, sleeve_radius) weighs no more")
+        if b.inner_race_inertia > m_in * r_p ** 2:
+            raise InputError(f"{p}.inner_race_inertia", b.inner_race_inertia, f"must be <= {m_in * r_p ** 2:.3g} kg m^2: "
+                             "the heaviest possible inner race (osmium, bore to pitch circle) with all its mass at "
+                             "the pitch radius")
+        friction(f"{p}.mu_d", b.mu_d)
+        friction(f"{p}.eta", b.eta)
+        lighter = min(b.inner_race_mass, b.outer_race_mass)
+        stiff(f"{p}.k_b1", b.k_b1, lighter, "lighter race")
+        stiff(f"{p}.k_rib", b.k_rib, b.outer_race_mass, "outer race")
+        damp(f"{p}.c_b", b.c_b, lighter, "lighter race")
+        damp(f"{p}.c_rib", b.c_rib, b.outer_race_mass, "outer race")
+        damp(f"{p}.inner_race_damping", b.inner_race_damping, b.inner_race_mass, "inner race")
+        damp(f"{p}.outer_race_damping", b.outer_race_damping, b.outer_race_mass, "outer race")
+
+    c = sc.contact
+    friction("contact.mu_rad", c.mu_rad)
+    friction("contact.mu_ax", c.mu_ax)
+    # the contact's tangent stiffness when it carries the whole rotor's weight, on the lightest
+    # inner race: F = k d^e  ->  dF/dd = e k^(1/e) F^((e-1)/e)
+    weight = sc.rotor.mass * GRAVITY
+    k_t = c.exponent * c.k_hertz ** (1.0 / c.exponent) * weight ** ((c.exponent - 1.0) / c.exponent)
+    m_race = min(b.inner_race_mass for b in sc.bearings.values())
+    if k_t * h * h / m_race > MAX_STEP_RATIO:
+        raise InputError("contact.k_hertz", c.k_hertz, f"too stiff for solver.step = {h:g} s: carrying the rotor's "
+                         f"weight its tangent stiffness {k_t:.3g} N/m on the inner race ({m_race:.3g} kg) gives "
+                         f"k h^2/m > {MAX_STEP_RATIO:g} (inertia below the Newton tolerance)")
+    m_rotor = sc.rotor.mass
+    stiff("amb.stiffness", sc.amb.stiffness, m_rotor, "rotor")
+    stiff("amb.axial_stiffness", sc.amb.axial_stiffness, m_rotor, "rotor")
+    damp("amb.damping", sc.amb.damping, m_rotor, "rotor")
+    damp("amb.axial_damping", sc.amb.axial_damping, m_rotor, "rotor")
+    m_outer = min(b.outer_race_mass for b in sc.bearings.values())
+    for key in ("k_cb", "k_ws", "k_h"):
+        stiff(f"axial.{key}", getattr(sc.axial, key), m_outer, "outer race (axial chain)")
+    damp("axial.c_ax", sc.axial.c_ax, m_outer, "outer race (axial chain)")
+
+    burst, part = sc.rotor.burst_speed_rpm()
+    if sc.speed_rpm > burst:
+        raise InputError("operating.speed_rpm", sc.speed_rpm, f"must be <= {burst:.4g} rpm: above it {part} bursts even "
+                         "if made of the strongest steel (solid-disk rim speed sqrt(8 sigma_u/((3+nu) rho)), "
+                         "sigma_u = 2.5 GPa)")
+    if sc.t_end > MAX_T_END:
+        raise InputError("operating.t_end", sc.t_end, f"must be <= {MAX_T_END:g} s (one day of simulated time; a "
+                         "landing lasts seconds, a coast-down minutes to hours)")
 
 
 def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scenario:
