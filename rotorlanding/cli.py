@@ -33,12 +33,21 @@ def _speeds(text: str) -> list[float]:
     return out
 
 
-def _linear_model(path: str, model: str, free: bool):
+def _below_burst(rotor, speeds) -> None:
+    """Spin speeds a rotor can reach: below its burst speed (docs/scenario_file.md, plausibility limits)."""
+    burst, part = rotor.burst_speed_rpm()
+    if speeds and max(speeds) > burst:
+        raise InputError("--speeds-rpm", max(speeds), f"must be <= {burst:.4g} rpm: above it {part} bursts even if "
+                         "made of the strongest steel", file=rotor.source)
+
+
+def _linear_model(path: str, model: str, free: bool, speeds=()):
     from .reduction import full_model, reduce_rotor
     from .rotor import load_rotor
     from .timoshenko import assemble
 
     rotor = load_rotor(path)
+    _below_burst(rotor, speeds)
     fe = assemble(rotor)
     if model == "reduced":
         try:
@@ -63,7 +72,7 @@ def cmd_modes(args) -> int:
     speeds = _speeds(args.speeds_rpm)
     if args.n_modes < 1:
         raise InputError("--n-modes", args.n_modes, "must be >= 1")
-    rotor, system, label = _linear_model(args.file, args.model, args.free)
+    rotor, system, label = _linear_model(args.file, args.model, args.free, speeds)
     results = campbell(system, speeds, args.n_modes)
     if args.plot:
         top = max(max(speeds), rotor.max_speed_rpm)
@@ -93,6 +102,7 @@ def cmd_reduce(args) -> int:
 
     speeds = _speeds(args.speeds_rpm)
     rotor = load_rotor(args.file)
+    _below_burst(rotor, speeds)
     fe = assemble(rotor)
     try:
         red = reduce_rotor(fe)

@@ -140,6 +140,8 @@ ROTOR_ARG_CASES = [
     (["modes", "--speeds-rpm", "-5"], "--speeds-rpm"),
     (["modes", "--speeds-rpm", "nan"], "--speeds-rpm"),
     (["modes", "--n-modes", "0"], "--n-modes"),
+    (["modes", "--speeds-rpm", "0,1e12"], "--speeds-rpm"),        # beyond the rotor's burst speed
+    (["reduce", "--speeds-rpm", "1e300"], "--speeds-rpm"),
     (["reduce", "--speeds-rpm", "1,x"], "--speeds-rpm"),
 ]
 
@@ -685,6 +687,54 @@ def test_calibrate_all_failed_exits_1_and_partial_counts(monkeypatch, tmp_path, 
     rows[1]["failed_landings"] = 0
     assert main(["calibrate", str(CAL_SPACE), "--out", str(tmp_path)]) == 0
     assert "1 of 2 designs had a landing that failed" in capsys.readouterr().err
+
+
+def test_every_shipped_input_still_loads():
+    """The plausibility limits sit where physics ends: every scenario, rotor, sweep case,
+    calibration space (load_space checks both ends of its ranges) and fit-mode range end shipped
+    in scenarios/, and both ends of every parameter range diagnose searches, must load."""
+    from rotorlanding import calibrate, modefit, sweep
+    from rotorlanding.coastdown import load_coastdown
+    from rotorlanding.effects import CATALOGUE
+    from rotorlanding.rotor import load_rotor, rotor_from_dict
+    from rotorlanding.scenario import load_scenario
+
+    kinds = collections.Counter()
+    for f in sorted((ROOT / "scenarios").rglob("*.toml")):
+        data = load_toml(f)
+        if "coastdown" in data:
+            load_coastdown(f)
+            kinds["coastdown"] += 1
+        elif "bearings" in data:
+            load_scenario(f)
+            kinds["scenario"] += 1
+        elif isinstance(data.get("rotor"), dict):
+            load_rotor(f)
+            kinds["rotor"] += 1
+        elif isinstance(data.get("rotor"), str):
+            sp = modefit.load_space(f)
+            for end in (0, 1):
+                rotor_from_dict(modefit.rotor_with(sp["rotor_data"], {k: v[end] for k, v in sp["ranges"].items()}))
+            kinds["fit-modes space"] += 1
+        elif "grid" in data or "mode" in data:
+            sw = sweep.load_sweep(f)
+            for case in sw["cases"]:
+                load_scenario(sw["base"], sweep._overrides(sw["fixed"], case))
+            kinds["sweep"] += 1
+        elif "ranges" in data:
+            calibrate.load_space(f)
+            kinds["calibration space"] += 1
+        else:
+            kinds["other"] += 1  # the measured feature table
+    assert kinds == {"scenario": 7, "coastdown": 1, "rotor": 2, "fit-modes space": 4, "sweep": 1,
+                     "calibration space": 3, "other": 1}
+    for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
+        for effect in CATALOGUE.values():
+            for p in effect.parameters:
+                if p.keys[0].startswith("unbalance."):
+                    continue  # the paper scenarios have no [unbalance] table
+                for v in (p.lower, p.upper):
+                    load_scenario(ROOT / "scenarios" / "paper" / f, [f"{k}={v!r}" for k in p.keys])
 
 
 def test_corpus_size():
