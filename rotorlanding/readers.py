@@ -185,7 +185,9 @@ def read_columns(path) -> dict[str, np.ndarray]:
             cols[k] = arr.astype(float).ravel()
         return cols
     text = read_text(path, kind="CSV", field="--measured")
-    rows = list(csv.reader(text.splitlines()))
+    lines = text.splitlines()
+    # as numpy.genfromtxt did before: '#' starts a comment in the data rows
+    rows = list(csv.reader([lines[0]] + [ln.split("#", 1)[0] for ln in lines[1:]]))
     names = [h.strip() for h in rows[0]]
     if len(set(names)) != len(names) or "" in names:
         raise InputError("(csv header)", ",".join(names), "channel names must be unique and non-empty",
