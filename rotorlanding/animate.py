@@ -49,12 +49,16 @@ def animate(results_path, out_path, *, fps: float = 20.0, view: str = "DE", max_
     from PIL import Image, ImageDraw
 
     from .landing import build_spec
-    from .results import read_results
+    from .readers import read_results_guarded
     from .scenario import scenario_from_dict
 
-    res = read_results(results_path)
+    res = read_results_guarded(results_path, ("scenario", "time_s", "q"))
     spec = build_spec(scenario_from_dict(res["scenario"], source=str(results_path)))
     t, q = res["time_s"], res["q"]
+    if len(t) < 2 or q.shape[1] != len(spec.names):
+        # a results file whose states do not belong to its stored scenario cannot be replayed
+        raise InputError("states/q", f"shape {q.shape}", f"must hold >= 2 samples of the scenario's "
+                         f"{len(spec.names)} coordinates", file=str(results_path))
     if view in ("DE", "NDE") and view not in spec.bearing_names:
         raise InputError("--view", view, f"this run has bearings {', '.join(spec.bearing_names)}")
     idx = _frames(t, fps, max_frames)

@@ -45,7 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml
+from .config import Table, load_toml, override_table, range_spec
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .validate import paper, paper_dir
@@ -75,18 +75,14 @@ def load_space(path) -> dict:
         if not (isinstance(cases, list) and cases and all(c in CASES for c in cases)):
             raise InputError("cases", cases, f"must be a non-empty list of {', '.join(CASES)}")
         ensemble = t.integer("ensemble", 1)
-        fixed = t.raw("fixed", {})
-        if not isinstance(fixed, dict):
-            raise InputError("fixed", fixed, "must be a table of scenario keys = values")
+        fixed = override_table(t.raw("fixed", {}), "fixed")
         ranges = t.raw("ranges")
         if not isinstance(ranges, dict) or not ranges:
             raise InputError("ranges", ranges, "give at least one key = {min, max[, log]}")
         for k, r in ranges.items():
-            if not (isinstance(r, dict) and {"min", "max"} <= set(r) <= {"min", "max", "log"} and r["min"] < r["max"]):
-                raise InputError(f"ranges.{k}", r, "must be {min = a, max = b[, log = true]} with a < b")
-            if r.get("log") and r["min"] <= 0:
-                raise InputError(f"ranges.{k}.min", r["min"], "must be > 0 with log = true")
+            range_spec(r, f"ranges.{k}", log=True)
         t.finish()
+        _check_ranges(fixed, ranges, cases)
     except InputError as err:
         raise err.with_file(str(path)) from None
     rng = np.random.default_rng(seed)
@@ -101,6 +97,22 @@ def load_space(path) -> dict:
         designs.append(d)
     return {"designs": designs, "t_end": t_end, "verify_top": verify_top, "fixed": dict(fixed), "cases": cases,
             "ensemble": ensemble}
+
+
+def _check_ranges(fixed: dict, ranges: dict, cases: list[str]) -> None:
+    """Every scored paper case must load (schema and plausibility limits) at both ends of the
+    ranges, so a key that does not exist or a range outside the physical limits is reported
+    before hours of landings rather than as every design failing."""
+    from .scenario import load_scenario
+
+    for end in ("min", "max"):
+        design = {k: float(r[end]) for k, r in ranges.items()}
+        for case in cases:
+            fname, case_sets = CASES[case]
+            try:
+                load_scenario(paper_dir() / fname, case_sets + design_overrides(design, fixed))
+            except InputError as err:
+                raise InputError(f"ranges ({end} ends), case {case}: {err.field}", err.value, err.allowed) from None
 
 
 def design_overrides(design: dict, fixed: dict | None = None) -> list[str]:
@@ -188,9 +200,10 @@ def _run_all(jobs, workers):
         if "#" in case:  # "CASE#k": member k of CASE's ensemble
             members.setdefault((i, case.split("#")[0]), []).append(r)
         else:
-            results.setdefault(i, {})[case] = r
+            results.setdefault(i, {})[case] = {**r, "failed": int(r.get("direction") == "failed")}
     for (i, case), m in members.items():
         st = ensemble_stats(m)
+        st["failed"] = sum(x.get("direction") == "failed" for x in m)  # landings that raised
         if "v_force_range_n" in st:  # the force score reads the members' median peak
             st["force_max_n"] = st["v_force_range_n"][1]
         results.setdefault(i, {})[case] = st
@@ -234,7 +247,8 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     rows = []
     for i, d in enumerate(sp["designs"]):
         total, parts = score(results[i], cases)
-        rows.append({"design": i, "score": total, "converged": None, "score_half_step": None, **d,
+        rows.append({"design": i, "score": total, "converged": None, "score_half_step": None,
+                     "failed_landings": sum(results[i][c].get("failed", 0) for c in cases), **d,
                      **{f"err_{k}": v for k, v in parts.items()},
                      **{f"{c}_direction": results[i][c].get("direction") for c in cases},
                      **{f"{c}_hz": results[i][c].get("frequency_hz") for c in cases},

@@ -33,12 +33,21 @@ def _speeds(text: str) -> list[float]:
     return out
 
 
-def _linear_model(path: str, model: str, free: bool):
+def _below_burst(rotor, speeds) -> None:
+    """Spin speeds a rotor can reach: below its burst speed (docs/scenario_file.md, plausibility limits)."""
+    burst, part = rotor.burst_speed_rpm()
+    if speeds and max(speeds) > burst:
+        raise InputError("--speeds-rpm", max(speeds), f"must be <= {burst:.4g} rpm: above it {part} bursts even if "
+                         "made of the strongest steel", file=rotor.source)
+
+
+def _linear_model(path: str, model: str, free: bool, speeds=()):
     from .reduction import full_model, reduce_rotor
     from .rotor import load_rotor
     from .timoshenko import assemble
 
     rotor = load_rotor(path)
+    _below_burst(rotor, speeds)
     fe = assemble(rotor)
     if model == "reduced":
         try:
@@ -63,7 +72,7 @@ def cmd_modes(args) -> int:
     speeds = _speeds(args.speeds_rpm)
     if args.n_modes < 1:
         raise InputError("--n-modes", args.n_modes, "must be >= 1")
-    rotor, system, label = _linear_model(args.file, args.model, args.free)
+    rotor, system, label = _linear_model(args.file, args.model, args.free, speeds)
     results = campbell(system, speeds, args.n_modes)
     if args.plot:
         top = max(max(speeds), rotor.max_speed_rpm)
@@ -93,6 +102,7 @@ def cmd_reduce(args) -> int:
 
     speeds = _speeds(args.speeds_rpm)
     rotor = load_rotor(args.file)
+    _below_burst(rotor, speeds)
     fe = assemble(rotor)
     try:
         red = reduce_rotor(fe)
@@ -124,17 +134,16 @@ def _load_case(path: str, overrides):
     if path.endswith(".h5"):
         from pathlib import Path
 
-        from .config import parse_value, set_dotted
-        from .results import read_results
+        from .config import parse_value, set_dotted, split_override
+        from .readers import read_results_guarded
 
-        if not Path(path).is_file():
-            raise InputError("file", path, "file not found")
-        data = read_results(path)["scenario"]
+        data = read_results_guarded(path, ("scenario",), field="scenario")["scenario"]
         for item in overrides or []:
-            if "=" not in item:
-                raise InputError("--set", item, "must look like dotted.key=value")
-            key, text = item.split("=", 1)
-            set_dotted(data, key.strip(), parse_value(text.strip()))
+            key, text = split_override(item)
+            try:
+                set_dotted(data, key, parse_value(text))
+            except InputError as err:
+                raise InputError(f"--set {key}", text, err.allowed) from None
         return scenario_from_dict(data, source=path)
     return load_scenario(path, overrides)
 
@@ -219,6 +228,11 @@ def cmd_sweep(args) -> int:
           f"map: {args.out}/whirl_map.png")
     for r in failed:
         print(f"  case {r['case']}: {r['status']}: {r['error']}")
+    if rows and len(failed) == len(rows):
+        print(f"rotorlanding: every one of the {len(rows)} cases failed", file=sys.stderr)
+        return 1
+    if failed:  # the others are results; the count goes to stderr as well, where scripts look
+        print(f"rotorlanding: warning: {len(failed)} of {len(rows)} cases failed", file=sys.stderr)
     return 0
 
 
@@ -299,6 +313,14 @@ def cmd_calibrate(args) -> int:
     from .calibrate import calibrate
 
     rows = calibrate(args.space, args.out, workers=args.workers)
+    failed = sum(1 for r in rows if r.get("failed_landings"))
+    if failed == len(rows):
+        print(f"rotorlanding: every one of the {len(rows)} designs had a landing that failed "
+              f"(errors: {args.out}/calibration.json); no best design", file=sys.stderr)
+        return 1
+    if failed:
+        print(f"rotorlanding: warning: {failed} of {len(rows)} designs had a landing that failed "
+              f"(failed_landings in {args.out}/calibration.csv)", file=sys.stderr)
     best = rows[0]
     from .calibrate import design_overrides
 

@@ -48,7 +48,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml, parse_value, set_dotted
+from .config import Table, load_toml, parse_value, set_dotted, split_override
 from .errors import InputError
 from .postprocess import energy_summary, evaluate, uniform
 from .scenario import Scenario, scenario_from_dict
@@ -118,10 +118,7 @@ def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, 
         except InputError as err:
             raise err.with_file(str(path)) from None
     for item in overrides or []:
-        if "=" not in item:
-            raise InputError("--set", item, "must look like dotted.key=value")
-        key, text = item.split("=", 1)
-        key = key.strip()
+        key, text = split_override(item)
         if key.startswith("coastdown."):
             if key[10:] not in FIELDS:
                 raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(FIELDS)}")

@@ -14,6 +14,7 @@ import tomllib
 from pathlib import Path
 
 from .errors import InputError
+from .readers import read_text
 
 MAX_INCLUDE_DEPTH = 8
 
@@ -34,12 +35,8 @@ def load_toml(path, _depth: int = 0) -> dict:
     path = Path(path)
     if _depth > MAX_INCLUDE_DEPTH:
         raise InputError("include", str(path), f"include depth exceeds {MAX_INCLUDE_DEPTH} (circular include?)")
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError("file", str(path), "file not found") from None
-    except OSError as exc:
-        raise InputError("file", str(path), f"cannot be read ({exc.strerror})") from None
+    # the one guard of text input: missing, empty, binary, UTF-16 or non-UTF-8 files (an include too)
+    text = read_text(path, field="include" if _depth else "file")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -53,6 +50,19 @@ def load_toml(path, _depth: int = 0) -> dict:
     for inc in includes:
         merged = deep_merge(merged, load_toml(path.parent / inc, _depth + 1))
     return deep_merge(merged, data)
+
+
+def split_override(item: str) -> tuple[str, str]:
+    """``(key, value text)`` of a ``--set key=value`` override; a missing ``=`` or an empty key
+    is named as such (not as an unknown field with an empty name)."""
+    if not isinstance(item, str) or "=" not in item:
+        raise InputError("--set", item, "must look like dotted.key=value")
+    key, text = item.split("=", 1)
+    key = key.strip()
+    if not key or any(not part.strip() for part in key.split(".")):
+        raise InputError("--set", item, "the key before '=' is empty or has an empty part; "
+                         "must look like dotted.key=value, e.g. contact.mu_rad=0.3")
+    return key, text.strip()
 
 
 def parse_value(text: str):
@@ -166,3 +176,52 @@ class Table:
         if unknown:
             raise InputError(self._field(unknown[0]), self.data[unknown[0]],
                              f"unknown field; allowed: {', '.join(sorted(self.used))}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Parts shared by the sweep, calibration and mode-fit space files: one check each, so a space
+# file with `fixed = 5` or `{min = "a"}` is one InputError line, not a TypeError traceback
+
+
+def _is_scalar(v) -> bool:
+    return isinstance(v, (bool, str)) or (isinstance(v, (int, float)) and math.isfinite(v))
+
+
+def override_table(value, field: str) -> dict:
+    """A table of ``"dotted.key" = value`` overrides (``[fixed]``): scalar values only."""
+    if not isinstance(value, dict):
+        raise InputError(field, value, 'must be a table of scenario keys = values, e.g. [fixed] "operating.t_end" = 0.5')
+    for k, v in value.items():
+        if not _is_scalar(v):
+            raise InputError(f"{field}.{k}", v, "must be a number (finite), true/false or a string")
+    return dict(value)
+
+
+def value_list(value, field: str) -> list:
+    """A non-empty list of scalar values (a ``[grid]`` entry)."""
+    if not isinstance(value, list) or not value:
+        raise InputError(field, value, "must be a non-empty list of values")
+    for v in value:
+        if not _is_scalar(v):
+            raise InputError(field, v, "values must be numbers (finite), true/false or strings")
+    return value
+
+
+def range_spec(value, field: str, *, log: bool = False) -> tuple[float, float, bool]:
+    """``{min = a, max = b}`` (with ``log`` allowed: ``{..., log = true}``, then a > 0) ->
+    (a, b, log)."""
+    keys = {"min", "max", "log"} if log else {"min", "max"}
+    form = "{min = a, max = b" + (", log = true" if log else "") + "}"
+    if not (isinstance(value, dict) and {"min", "max"} <= set(value) <= keys):
+        raise InputError(field, value, f"must be {form} with finite numbers a < b")
+    lo, hi, lg = value["min"], value["max"], value.get("log", False)
+    for name, x in (("min", lo), ("max", hi)):
+        if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x):
+            raise InputError(f"{field}.{name}", x, "must be a finite number")
+    if not lo < hi:
+        raise InputError(field, value, f"must be {form} with a < b")
+    if not isinstance(lg, bool):
+        raise InputError(f"{field}.log", lg, "must be true or false")
+    if lg and not lo > 0:
+        raise InputError(f"{field}.min", lo, "must be > 0 with log = true")
+    return float(lo), float(hi), lg

@@ -390,5 +390,6 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
     wall = time.perf_counter() - wall0
     it = model.mbs.sys["dynamicSolver"].it
     stats = {"wall_s": wall, "steps": int(it.currentStepIndex), "newton_iterations": int(it.newtonStepsCount),
-             "jacobians": int(it.newtonJacobiCount), "t_reached": float(it.currentTime)}
+             "jacobians": int(it.newtonJacobiCount), "t_reached": float(it.currentTime),
+             "step_at_stop_s": float(it.currentStepSize)}
     return ok, msg, stats

@@ -40,6 +40,16 @@ FEATURE_UNITS = {
 }
 
 
+#: features that are magnitudes or times after the drop, with why (a sign error in a table would
+#: otherwise be fitted as a real gap)
+POSITIVE_FEATURES = {"whirl_frequency_hz": "a whirl frequency is a magnitude; whirl_direction gives the sense"}
+NONNEGATIVE_FEATURES = {
+    "whirl_onset_s": "time after the drop", "DE_race_spinup_s": "time after the drop",
+    "DE_orbit_radius_mean_m": "a radius", "DE_force_peak_n": "a force magnitude",
+    "axial_oscillation_m": "an amplitude",
+}
+
+
 def soft_cap(d: float, cap: float = MAX_DISTANCE) -> float:
     """d / (1 + (d/cap)^4)^(1/4): ~d for small d (1 -> 0.997, 2 -> 1.91), < cap always."""
     return d / (1.0 + (d / cap) ** 4) ** 0.25
@@ -178,6 +188,10 @@ def features_from_table(table: dict, clearance: float, *, where: str = "features
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InputError(f"{where}.{k}", v, f"must be a finite number in {FEATURE_UNITS[k].replace('_', '/')}",
                              file=file)
+        if k in POSITIVE_FEATURES and not v > 0:
+            raise InputError(f"{where}.{k}", v, f"must be > 0: {POSITIVE_FEATURES[k]}", file=file)
+        if k in NONNEGATIVE_FEATURES and not v >= 0:
+            raise InputError(f"{where}.{k}", v, f"must be >= 0: {NONNEGATIVE_FEATURES[k]}", file=file)
         if k.endswith("_m") and k != "axial_mean_m" and abs(v) > 0.05:
             raise InputError(f"{where}.{k}", v, "a journal displacement in metres is < 0.05 m (given in mm?)", file=file)
         out[k] = (float(v), scale_of(k, float(v), clearance, max(forces) if forces and k.endswith("_n") else None))

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
+from .readers import read_columns, read_results_guarded, read_text
 
 CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm",
             "NDE_inner_race_speed_rpm", "axial_m", "DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n")
@@ -70,11 +71,53 @@ class Measurement:
                            list(self.points))
 
 
+#: largest magnitude a measured channel can plausibly hold, by unit, and why (beyond it the data
+#: are in another unit, corrupted, or a sensor's overflow code)
+CHANNEL_LIMITS = {
+    "_rpm": (1.0e6, "rpm: the fastest rotors built (micro gas turbines) stay below 1e6 rpm"),
+    "_m": (0.1, "m: a journal or axial displacement of a landing is a fraction of a millimetre; 0.1 m is "
+                "beyond any catcher bearing (data in mm or um?)"),
+    "_n": (1.0e7, "N: 1e7 N (1000 t) is beyond the static load rating of any rolling bearing"),
+}
+
+
+def _check_clock(t: np.ndarray, source: str) -> None:
+    """time_s: finite where given, strictly increasing. A clock that restarts or repeats (two
+    records joined, a logger reset) would otherwise be sorted into one interleaved record."""
+    ok = np.isfinite(t)
+    if ok.sum() < 2:
+        raise InputError("time_s", f"{int(ok.sum())} valid samples", "needs at least 2 finite times", file=source)
+    tt = t[ok]
+    back = np.nonzero(np.diff(tt) <= 0)[0]
+    if back.size:
+        k = int(back[0])
+        raise InputError("time_s", f"{tt[k + 1]:.9g} after {tt[k]:.9g} (sample {int(np.nonzero(ok)[0][k + 1]) + 1})",
+                         "must increase strictly: a clock that restarts or repeats means joined records; "
+                         "give one record", file=source)
+
+
+def _check_channel(name: str, v: np.ndarray, source: str) -> None:
+    """A channel holds numbers (NaN only where it has no sample) within a physical range."""
+    finite = np.isfinite(v)
+    if np.any(np.isinf(v)):
+        raise InputError(name, "inf", "must be finite numbers (NaN where the channel has no sample)", file=source)
+    if finite.sum() < 2:
+        raise InputError(name, f"{int(finite.sum())} numeric samples", "a channel needs at least 2 numbers "
+                         "(a text or empty column?)", file=source)
+    for suffix, (limit, why) in CHANNEL_LIMITS.items():
+        if name.endswith(suffix) and not name.endswith("_m_s"):
+            big = float(np.max(np.abs(v[finite])))
+            if big > limit:
+                raise InputError(name, f"{big:.6g}", f"|value| must be <= {limit:g} {why}", file=source)
+            break
+
+
 def _from_columns(cols: dict[str, np.ndarray], source: str) -> Measurement:
     if "time_s" not in cols:
         raise InputError("time_s", None, "missing time column (channel names carry units, e.g. time_s, DE_y_m)",
                          file=source)
     t = np.asarray(cols["time_s"], float).ravel()
+    _check_clock(t, source)
     m = Measurement(source=source)
     for name, val in cols.items():
         if name == "time_s":
@@ -84,6 +127,7 @@ def _from_columns(cols: dict[str, np.ndarray], source: str) -> Measurement:
         v = np.asarray(val, float).ravel()
         if v.shape != t.shape:
             raise InputError(name, f"{v.size} samples", f"must have as many samples as time_s ({t.size})", file=source)
+        _check_channel(name, v, source)
         ok = np.isfinite(v) & np.isfinite(t)
         if ok.sum() >= 2:
             order = np.argsort(t[ok])
@@ -99,26 +143,10 @@ def load_measurement(path, *, time_offset_s: float = 0.0) -> Measurement:
     if not path.is_file():
         raise InputError("--measured", str(path), "file not found")
     suffix = path.suffix.lower()
-    if suffix == ".csv":
-        with open(path, newline="") as fh:
-            header = fh.readline().strip().split(",")
-        names = [h.strip() for h in header]
-        try:
-            data = np.genfromtxt(path, delimiter=",", skip_header=1, dtype=float, ndmin=2)
-        except ValueError as exc:
-            raise InputError("(csv)", str(exc).splitlines()[0], "numbers separated by commas", file=str(path)) from None
-        if data.shape[1] != len(names):
-            raise InputError("(csv)", f"{data.shape[1]} columns", f"header names {len(names)}", file=str(path))
-        m = _from_columns({n: data[:, i] for i, n in enumerate(names)}, str(path))
-    elif suffix == ".mat":
-        from scipy.io import loadmat
-
-        raw = loadmat(path)
-        m = _from_columns({k: v for k, v in raw.items() if not k.startswith("__")}, str(path))
+    if suffix in (".csv", ".mat"):
+        m = _from_columns(read_columns(path), str(path))
     elif suffix in (".h5", ".hdf5"):
-        from .results import read_results
-
-        res = read_results(path)
+        res = read_results_guarded(path, ("time_s", "series"), field="--measured")
         cols = {"time_s": res["time_s"]}
         for src, dst in _FROM_RESULTS.items():
             if src in res["series"]:
@@ -154,9 +182,13 @@ def _flatten(prefix: str, node, out: list[tuple[str, object]]):
 
 def _feature_table(path: Path, suffix: str) -> Measurement:
     try:
-        data = tomllib.loads(path.read_text()) if suffix == ".toml" else json.loads(path.read_text())
+        text = read_text(path, kind=suffix[1:].upper(), field="--measured")
+        data = tomllib.loads(text) if suffix == ".toml" else json.loads(text)
     except (tomllib.TOMLDecodeError, json.JSONDecodeError) as exc:
         raise InputError("(file)", str(exc).splitlines()[0], f"valid {suffix[1:].upper()}", file=str(path)) from None
+    if not isinstance(data, dict):
+        raise InputError("(file)", type(data).__name__, "a feature table is a table/object at the top level",
+                         file=str(path))
     allowed_top = {"title", "source", "notes", "features", "points"}
     for k in data:
         if k not in allowed_top:

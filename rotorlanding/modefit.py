@@ -42,8 +42,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml, set_dotted
+from .config import Table, load_toml, range_spec, set_dotted
 from .errors import InputError
+
+
+def _finite(x) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
 
 
 def load_space(path) -> dict:
@@ -65,15 +69,15 @@ def load_space(path) -> dict:
         tg = t.table("targets")
         speeds = tg.raw("speeds_rpm")
         freqs = tg.raw("frequencies_hz")
-        if not (isinstance(speeds, list) and speeds and all(isinstance(s, (int, float)) and s >= 0 for s in speeds)):
+        if not (isinstance(speeds, list) and speeds and all(_finite(s) and s >= 0 for s in speeds)):
             raise InputError("targets.speeds_rpm", speeds, "must be a non-empty list of speeds >= 0 rpm")
         if not (isinstance(freqs, list) and len(freqs) == len(speeds)
-                and all(isinstance(f, (int, float)) and f > 0 for f in freqs)):
+                and all(_finite(f) and f > 0 for f in freqs)):
             raise InputError("targets.frequencies_hz", freqs, f"must be a list of {len(speeds)} frequencies > 0 Hz")
         direction = tg.string("direction", "forward")
         max_ratio = tg.number("max_mode_to_spin", positive=True) if tg.has("max_mode_to_spin") else math.inf
         held = tg.raw("predict_speeds_rpm") if tg.has("predict_speeds_rpm") else []
-        if not (isinstance(held, list) and all(isinstance(s, (int, float)) and s >= 0 and s not in speeds
+        if not (isinstance(held, list) and all(_finite(s) and s >= 0 and s not in speeds
                                                for s in held)):
             raise InputError("targets.predict_speeds_rpm", held,
                              "must be a list of speeds >= 0 rpm that are not among speeds_rpm")
@@ -84,8 +88,7 @@ def load_space(path) -> dict:
         if not isinstance(ranges, dict) or not ranges:
             raise InputError("ranges", ranges, "give at least one key = {min, max}")
         for k, r in ranges.items():
-            if not (isinstance(r, dict) and set(r) == {"min", "max"} and r["min"] < r["max"]):
-                raise InputError(f"ranges.{k}", r, "must be {min = a, max = b} with a < b")
+            range_spec(r, f"ranges.{k}")
         t.finish()
     except InputError as err:
         raise err.with_file(str(path)) from None

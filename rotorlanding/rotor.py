@@ -21,6 +21,29 @@ from .config import load_toml
 from .errors import InputError
 
 
+#: Physical plausibility limits of rotor values (docs/rotor_file.md, "Plausibility limits"): beyond
+#: them no real rotor exists and a run would only produce numbers.
+#: kg/m^3: osmium (22 590 kg/m^3) is the densest element
+MAX_DENSITY = 22600.0
+#: Pa: diamond (about 1.05e12 Pa) is the stiffest known material
+MAX_YOUNGS_MODULUS = 1.2e12
+#: kg: a disk heavier than 100 t; the largest rotors on magnetic bearings (turbo-compressors) weigh
+#: a few tonnes, large turbine-generator rotors (not magnetically levitated) up to ~300 t per piece
+MAX_DISK_MASS = 1.0e5
+#: m: the largest dimension of a rotor part (length, diameter, thickness); the largest rotors built,
+#: turbine-generator shafts, are ~2 m across and ~15 m long
+MAX_DIMENSION = 20.0
+#: N/m and N s/m: linear supports of the modal model. No bearing or foundation is stiffer than
+#: ~1e10 N/m; 1e13 leaves x1000 for a pinned idealisation, beyond which the eigenproblem's range of
+#: stiffnesses (the rotor's own ~1e6-1e8 N/m) approaches double precision and its modes are lost
+MAX_SUPPORT_STIFFNESS = 1.0e13
+MAX_SUPPORT_DAMPING = 1.0e10
+#: Pa: ultimate strength of the strongest structural steels (maraging steel grade 350: ~2.4 GPa).
+#: A solid disk, the least stressed rotating shape, reaches it at its centre at the rim speed
+#: v = sqrt(8 sigma / ((3 + nu) rho)) (Timoshenko & Goodier, rotating disks): 880 m/s in steel
+MAX_STRENGTH = 2.5e9
+
+
 @dataclass(frozen=True)
 class Material:
     name: str
@@ -95,10 +118,47 @@ class Rotor:
     def length(self) -> float:
         return sum(s.length for s in self.sections)
 
+    @property
+    def polar_inertia(self) -> float:
+        """kg m^2 about the spin axis: shaft sections and disks."""
+        return sum(s.material.density * s.length * math.pi / 32.0 * (s.outer_diameter ** 4 - s.inner_diameter ** 4)
+                   for s in self.sections) + sum(d.polar_inertia for d in self.disks)
+
+    @property
+    def mass(self) -> float:
+        """kg: shaft sections and disks."""
+        return sum(s.area * s.length * s.material.density for s in self.sections) + sum(d.mass for d in self.disks)
+
+    def burst_speed_rpm(self) -> tuple[float, str]:
+        """(speed [rpm], part) at which the first part would burst even if made of the strongest
+        steel: the rim speed of a section (outer radius) or disk (radius of gyration sqrt(Ip/m),
+        a lower bound of its rim radius) reaches sqrt(8 sigma_u / ((3 + nu) rho)) (solid disk, the
+        least stressed rotating shape). Disks carry no material: the rotor's lightest is taken."""
+        def v_burst(m: Material) -> float:
+            return math.sqrt(8.0 * MAX_STRENGTH / ((3.0 + m.poisson_ratio) * m.density))
+
+        best = (math.inf, "")
+        for i, s in enumerate(self.sections):
+            omega = v_burst(s.material) / (s.outer_diameter / 2.0)
+            best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.outer_diameter:g} m)"))
+        if self.disks:
+            light = min((s.material for s in self.sections), key=lambda m: m.density)
+            for i, d in enumerate(self.disks):
+                if d.mass > 0 and d.polar_inertia > 0:
+                    k = math.sqrt(d.polar_inertia / d.mass)
+                    omega = v_burst(light) / k
+                    best = min(best, (omega * 30.0 / math.pi, f"rotor.disks[{i}] '{d.name}' (radius of gyration {k:.3g} m)"))
+        return best
+
 
 def _material(name: str, t: _Table) -> Material:
     e = t.number("youngs_modulus", positive=True)
+    if e > MAX_YOUNGS_MODULUS:
+        raise InputError(f"{t.path}.youngs_modulus", e, f"must be <= {MAX_YOUNGS_MODULUS:g} Pa (diamond, the stiffest "
+                         "known material)")
     rho = t.number("density", positive=True)
+    if rho > MAX_DENSITY:
+        raise InputError(f"{t.path}.density", rho, f"must be <= {MAX_DENSITY:g} kg/m^3 (osmium, the densest element)")
     has_nu, has_g = t.has("poisson_ratio"), t.has("shear_modulus")
     if not (has_nu or has_g):
         raise InputError(f"{t.path}.poisson_ratio", None, "missing: give poisson_ratio or shear_modulus")
@@ -138,6 +198,14 @@ def disk_from_geometry(outer_diameter: float, inner_diameter: float, thickness: 
     return m, ip, ip / 2.0 + m * thickness ** 2 / 12.0
 
 
+def _dimension(t: _Table, key: str) -> float:
+    x = t.number(key, positive=True)
+    if x > MAX_DIMENSION:
+        raise InputError(t._field(key), x, f"must be <= {MAX_DIMENSION:g} m (the largest rotors built are ~2 m across "
+                         "and ~15 m long)")
+    return x
+
+
 def _disk_material(d, materials: dict) -> Material:
     name = d.string("material")
     if name not in materials:
@@ -160,8 +228,8 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
 
     sections = []
     for s in r.array_of_tables("sections"):
-        length = s.number("length", positive=True)
-        d_out = s.number("outer_diameter", positive=True)
+        length = _dimension(s, "length")
+        d_out = _dimension(s, "outer_diameter")
         d_in = s.number("inner_diameter", 0.0, nonnegative=True)
         if d_in >= d_out:
             raise InputError(f"{s.path}.inner_diameter", d_in, f"must be < outer_diameter ({d_out})")
@@ -195,15 +263,27 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
                 if d.has(key):
                     raise InputError(f"{d.path}.{key}", d.raw(key),
                                      "give either mass and inertias or outer_diameter/thickness/material, not both")
-            mass, ip, it = disk_from_geometry(d.number("outer_diameter", positive=True),
+            mass, ip, it = disk_from_geometry(_dimension(d, "outer_diameter"),
                                               d.number("inner_diameter", 0.0, nonnegative=True),
-                                              d.number("thickness", positive=True),
+                                              _dimension(d, "thickness"),
                                               _disk_material(d, materials), d.path)
         else:
             mass = d.number("mass", nonnegative=True)
             ip = d.number("polar_inertia", nonnegative=True)
             it = d.number("transverse_inertia", nonnegative=True)
         d.finish()
+        if mass > 0 and math.sqrt(ip / mass) > MAX_DIMENSION / 2.0:
+            raise InputError(f"{d.path}.polar_inertia", ip, f"radius of gyration sqrt(polar_inertia/mass) = "
+                             f"{math.sqrt(ip / mass):.3g} m: must be <= {MAX_DIMENSION / 2:g} m (the largest rotors built "
+                             "are ~2 m across)")
+        # a body of revolution: It = Ip/2 + integral of x^2 dm, with every axial distance x from
+        # the disk's centre within the rotor's length
+        if it > ip / 2.0 + mass * total ** 2:
+            raise InputError(f"{d.path}.transverse_inertia", it, f"must be <= polar_inertia/2 + mass x (rotor length)^2 "
+                             f"= {ip / 2.0 + mass * total ** 2:.4g} kg m^2 (a disk cannot extend beyond the rotor)")
+        if mass > MAX_DISK_MASS:
+            raise InputError(f"{d.path}.mass", mass, f"must be <= {MAX_DISK_MASS:g} kg (100 t: heavier than any rotor "
+                             "on magnetic bearings; see docs/rotor_file.md)")
         disks.append(Disk(name=disk_name, position=x, mass=mass, polar_inertia=ip, transverse_inertia=it))
 
     def station_name(t: _Table, key: str) -> str:
@@ -219,6 +299,12 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
             kw[key] = s.number(key, 0.0, nonnegative=True)
         for key in ("kyz", "kzy", "cyz", "czy"):
             kw[key] = s.number(key, 0.0)
+        for key, v in kw.items():
+            cap = MAX_SUPPORT_STIFFNESS if key[0] == "k" else MAX_SUPPORT_DAMPING
+            if key != "station" and abs(v) > cap:
+                raise InputError(s._field(key), v, f"|value| must be <= {cap:g} {'N/m' if key[0] == 'k' else 'N s/m'} "
+                                 "(stiffer than any bearing or foundation x1000: beyond it the modal problem loses "
+                                 "the rotor's own stiffness to rounding)")
         s.finish()
         supports.append(Support(**kw))
 
@@ -244,8 +330,13 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     damping.finish()
     max_speed = r.number("max_speed_rpm", 10000.0, positive=True)
     r.finish()
-    return Rotor(name, tuple(sections), tuple(disks), stations, tuple(supports), reduction,
-                 alpha, beta, max_speed, source)
+    rotor = Rotor(name, tuple(sections), tuple(disks), stations, tuple(supports), reduction,
+                  alpha, beta, max_speed, source)
+    burst, part = rotor.burst_speed_rpm()
+    if max_speed > burst:
+        raise InputError("rotor.max_speed_rpm", max_speed, f"must be <= {burst:.4g} rpm: above it {part} bursts even if "
+                         "made of the strongest steel (docs/scenario_file.md, plausibility limits)")
+    return rotor
 
 
 def load_rotor(path) -> Rotor:

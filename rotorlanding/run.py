@@ -13,6 +13,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
@@ -86,7 +87,7 @@ def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, p
     summary["complete"] = stats["complete"]
     summary["t_reached_s"] = float(t[-1])
     if not stats["complete"]:
-        summary["message"] = f"solver stopped at t = {t[-1]:.6g} s: {stats['message']}"
+        summary["message"] = f"solver stopped at t = {t[-1]:.6g} s: {stats['message']}; {stop_report(spec, series, stats)}"
     summary["performance"] = {"simulated_s": stats["simulated_s"], "wall_s": stats["wall_s"], "steps": stats["steps"],
                               "newton_iterations": stats["newton_iterations"], "jacobians": stats["jacobians"],
                               "wall_s_per_simulated_s": stats["wall_s"] / max(stats["simulated_s"], 1e-12),
@@ -108,6 +109,35 @@ def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, p
         summary["figures"] = [p.name for p in plot_files]
         (out / "summary.json").write_text(json.dumps(summary, indent=2))
     return summary
+
+
+def stop_report(spec, series: dict, stats: dict, window: int = 20) -> str:
+    """What was extreme when the solver stopped (last ``window`` output samples) and the input it
+    points to, so a `SolveDynamic terminated` names a cause: a contact force far above the rotor's
+    weight points at the contact stiffness/damping, a race or rotor speed running away at the
+    friction or drive, otherwise the step."""
+    sc = spec.scenario
+    weight = sc.rotor.mass * 9.80665
+    parts, likely = [], []
+    worst = 0.0
+    for b in sc.bearings:
+        f = np.abs(series[f"{b}_normal_force_n"][-window:])
+        d = series[f"{b}_penetration_m"][-window:]
+        parts.append(f"{b} contact force up to {f.max():.3g} N ({f.max() / weight:.3g} x rotor weight), "
+                     f"penetration {d.max():.3g} m, race {series[f'{b}_race_speed_rpm'][-1]:.4g} rpm")
+        worst = max(worst, f.max() / weight)
+    rotor = series["rotor_speed_rpm"][-window:]
+    h = stats.get("step_at_stop_s", float("nan"))
+    parts.append(f"rotor {rotor[-1]:.4g} rpm, step {h:.3g} s (solver.step {sc.solver.step:g} s"
+                 + (f", cut {sc.solver.step / h:.3g}-fold: a force too stiff for the step)" if h < 1e-3 * sc.solver.step
+                    else ")"))
+    if worst > 20:  # landing impacts on the rig peak at ~5 x the rotor's weight (docs/validation.md, Table 2)
+        likely.append("contact.k_hertz / contact.k_visc (impact forces far above a landing's)")
+    races = max(abs(series[f"{b}_race_speed_rpm"][-1]) for b in sc.bearings)
+    if races > 1.5 * max(abs(sc.speed_rpm), 1.0) or abs(rotor[-1]) > 1.5 * max(abs(sc.speed_rpm), 1.0):
+        likely.append("friction (contact.mu_rad, contact.mu_ax) or spin.drive (a speed running away)")
+    likely.append("solver.step (halve it)")
+    return "at the stop: " + "; ".join(parts) + "; likely input: " + ", or ".join(likely)
 
 
 def format_summary(summary: dict) -> str:

@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted
+from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted, split_override
 from .errors import InputError
 from .rotor import Rotor, rotor_from_dict
 
@@ -44,6 +44,33 @@ EFFECTS = {
 }
 
 BEARING_NAMES = ("DE", "NDE")
+
+# Physical plausibility limits (docs/scenario_file.md, "Plausibility limits"): a value beyond one is
+# not a rig that exists, and the solver would either stop or, worse, finish with numbers that mean
+# nothing. Each limit is set where the physics ends, not at the edge of today's rig, so unusual but
+# real machines pass; rotor limits (density, stiffness, disk mass, burst speed) live in rotor.py.
+
+#: -: friction coefficients (mu_rad, mu_ax, mu_d and the ribbon's friction ratio eta). Clean
+#: unlubricated metals in air show 0.5-1.5 (ASM Handbook Vol. 18, Friction, Lubrication and Wear
+#: Technology; steel on steel 0.6-0.8 dry); beyond ~2 only atomically clean surfaces in vacuum,
+#: i.e. seizure, which a Coulomb law does not describe
+MAX_FRICTION = 2.0
+#: -: radial clearance / sleeve radius. Catcher-bearing clearances are 0.1-1 % of the journal radius
+#: (about half the AMB air gap); the contact model (Hertz contact of nearly conforming circles,
+#: small journal excursions) is meaningless long before the clearance reaches 10 % of the radius
+MAX_CLEARANCE_RATIO = 0.1
+#: -: k h^2 / m (and c h / m) of a spring (damper) on the lightest body it acts on. Above 1e6 the
+#: body's inertia term in the Newton matrix, M / (beta h^2) + C gamma / (beta h) + K, is below the
+#: Newton tolerance (1e-6 relative): the solver no longer sees the body move, the spring is a rigid
+#: link the solver cannot resolve with this solver.step
+MAX_STEP_RATIO = 1.0e6
+#: Harris-Palmgren f1 = z (F_s/C_s)^y: Harris gives z = 0.0004-0.003, y = 0.33-0.55
+MAX_HP_Z = 0.1
+MAX_HP_Y = 2.0
+#: m/s: friction regularisation velocity; wider turns Coulomb friction into viscous damping
+MAX_V_REG = 1.0
+#: s: one day of simulated time; a landing lasts seconds, a coast-down to rest minutes to hours
+MAX_T_END = 86400.0
 
 
 @dataclass(frozen=True)
@@ -240,6 +267,12 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         face_inner_radius=t.number("face_inner_radius", 0.0, **nn),
         face_outer_radius=t.number("face_outer_radius", 0.0, **nn),
     )
+    from .rotor import MAX_DIMENSION
+
+    for key in ("sleeve_radius", "pitch_diameter", "face_inner_radius", "face_outer_radius"):
+        if getattr(b, key) > MAX_DIMENSION:  # plausibility (see _plausible); first, as the face check uses them
+            raise InputError(f"{t.path}.{key}", getattr(b, key), f"must be <= {MAX_DIMENSION:g} m (the largest rotors "
+                             "built are ~2 m across)")
     if b.axial_face and not 0 < b.face_inner_radius < b.face_outer_radius:
         raise InputError(f"{t.path}.face_outer_radius", b.face_outer_radius,
                          f"with axial_face = true need 0 < face_inner_radius ({b.face_inner_radius}) < face_outer_radius")
@@ -368,8 +401,145 @@ def _scenario(data: dict, source, name) -> Scenario:
     if solver.output_period < solver.step:
         raise InputError("solver.output_period", solver.output_period, f"must be >= solver.step ({solver.step} s)")
     top.finish()
-    return Scenario(title, rotor, bearings, contact, axial, amb, spin, unbalance, effects, speed, t_end, solver,
-                    raw=data, source=source, bounds=bounds)
+    sc = Scenario(title, rotor, bearings, contact, axial, amb, spin, unbalance, effects, speed, t_end, solver,
+                  raw=data, source=source, bounds=bounds)
+    _plausible(sc)
+    return sc
+
+
+def _plausible(sc: Scenario) -> None:
+    """Physical plausibility limits of a scenario (module constants above, with their reasons)."""
+    from .rotor import MAX_DENSITY
+    from .timoshenko import GRAVITY
+
+    h = sc.solver.step
+    # the speed first: the spin terms below scale with it
+    burst, part = sc.rotor.burst_speed_rpm()
+    if sc.speed_rpm > burst:
+        raise InputError("operating.speed_rpm", sc.speed_rpm, f"must be <= {burst:.4g} rpm: above it {part} bursts even "
+                         "if made of the strongest steel (solid-disk rim speed sqrt(8 sigma_u/((3+nu) rho)), "
+                         "sigma_u = 2.5 GPa)")
+
+    def friction(field_, mu):
+        if mu > MAX_FRICTION:
+            raise InputError(field_, mu, f"a friction coefficient must lie in [0, {MAX_FRICTION:g}] (clean dry metals "
+                             "in air: 0.5-1.5; beyond that is seizure, not Coulomb friction)")
+
+    def stiff(field_, k, m, body, unit="N/m"):
+        if k * h * h / m > MAX_STEP_RATIO:
+            raise InputError(field_, k, f"must be <= {MAX_STEP_RATIO * m / h ** 2:.3g} {unit} here: on the {body} "
+                             f"({m:.3g} kg) with solver.step = {h:g} s its inertia is below the Newton tolerance "
+                             f"(k h^2/m <= {MAX_STEP_RATIO:g}); a rigid link the solver cannot resolve")
+
+    def damp(field_, c, m, body):
+        if c * h / m > MAX_STEP_RATIO:
+            raise InputError(field_, c, f"must be <= {MAX_STEP_RATIO * m / h:.3g} N s/m here: on the {body} "
+                             f"({m:.3g} kg) with solver.step = {h:g} s its inertia is below the Newton tolerance "
+                             f"(c h/m <= {MAX_STEP_RATIO:g})")
+
+    for b in sc.bearings.values():
+        p = f"bearings.{b.name}"
+        if b.clearance > MAX_CLEARANCE_RATIO * b.sleeve_radius:
+            raise InputError(f"{p}.clearance", b.clearance, f"must be <= {MAX_CLEARANCE_RATIO:g} x sleeve_radius "
+                             f"({MAX_CLEARANCE_RATIO * b.sleeve_radius:.3g} m): catcher-bearing clearances are "
+                             "0.1-1 % of the journal radius")
+        r_i, r_p = b.race_radius, b.pitch_diameter / 2.0
+        if not r_p > r_i:
+            raise InputError(f"{p}.pitch_diameter", b.pitch_diameter, f"must be > the bore diameter 2 (sleeve_radius + "
+                             f"clearance) = {2 * r_i:.4g} m: the balls run outside the inner race's bore")
+        # the most a race can weigh: the densest element filling the space from the bore to the
+        # pitch circle (inner) or from the pitch circle to twice its radius (outer, with what moves
+        # with it), as wide as the pitch diameter (wider than any rolling bearing)
+        m_in = MAX_DENSITY * math.pi * (r_p ** 2 - r_i ** 2) * 2.0 * r_p
+        m_out = MAX_DENSITY * math.pi * 3.0 * r_p ** 2 * 2.0 * r_p
+        for key, m, cap in (("inner_race_mass", b.inner_race_mass, m_in), ("outer_race_mass", b.outer_race_mass, m_out)):
+            if m > cap:
+                raise InputError(f"{p}.{key}", m, f"must be <= {cap:.3g} kg: a ring of the densest element (osmium) "
+                                 "that fills the bearing's envelope (pitch_diameter, sleeve_radius) weighs no more")
+        if b.inner_race_inertia > m_in * r_p ** 2:
+            raise InputError(f"{p}.inner_race_inertia", b.inner_race_inertia, f"must be <= {m_in * r_p ** 2:.3g} kg m^2: "
+                             "the heaviest possible inner race (osmium, bore to pitch circle) with all its mass at "
+                             "the pitch radius")
+        # ISO 76: C0 = f0 i Z Dw^2 cos(alpha) with f0 <= 14 MPa; the balls sit on the pitch circle
+        # (Z Dw <= pi d_m, Dw <= d_m/2) in at most 2 rows: C0 <= 14 MPa x 2 x pi d_m^2 / 2
+        c0_max = 14e6 * math.pi * b.pitch_diameter ** 2
+        if b.static_load_rating > c0_max:
+            raise InputError(f"{p}.static_load_rating", b.static_load_rating, f"must be <= {c0_max:.3g} N: the static "
+                             "rating of a double-row bearing full of balls of half the pitch diameter (ISO 76, f0 <= 14 MPa)")
+        if b.hp_z > MAX_HP_Z or b.hp_y > MAX_HP_Y:
+            key, v, cap = ("hp_z", b.hp_z, MAX_HP_Z) if b.hp_z > MAX_HP_Z else ("hp_y", b.hp_y, MAX_HP_Y)
+            raise InputError(f"{p}.{key}", v, f"must be <= {cap:g}: Harris gives z = 0.0004-0.003 and y = 0.33-0.55 "
+                             "for rolling bearings (Harris, Rolling Bearing Analysis, Table 'f1'); diagnose searches "
+                             "z up to 0.02")
+        friction(f"{p}.mu_d", b.mu_d)
+        friction(f"{p}.eta", b.eta)
+        lighter = min(b.inner_race_mass, b.outer_race_mass)
+        stiff(f"{p}.k_b1", b.k_b1, lighter, "lighter race")
+        # the ball set's tangent stiffness k_b1 + 2 k_b2 r at a deflection of one clearance
+        stiff(f"{p}.k_b2", b.k_b1 + 2.0 * b.k_b2 * b.clearance, lighter, "lighter race (k_b1 + 2 k_b2 clearance)")
+        stiff(f"{p}.k_rib", b.k_rib, b.outer_race_mass, "outer race")
+        damp(f"{p}.c_b", b.c_b, lighter, "lighter race")
+        damp(f"{p}.c_rib", b.c_rib, b.outer_race_mass, "outer race")
+        damp(f"{p}.inner_race_damping", b.inner_race_damping, b.inner_race_mass, "inner race")
+        damp(f"{p}.outer_race_damping", b.outer_race_damping, b.outer_race_mass, "outer race")
+
+    c = sc.contact
+    friction("contact.mu_rad", c.mu_rad)
+    friction("contact.mu_ax", c.mu_ax)
+    # the contact's tangent stiffness when it carries the whole rotor's weight, on the lightest
+    # inner race: F = k d^e  ->  dF/dd = e k^(1/e) F^((e-1)/e)
+    weight = sc.rotor.mass * GRAVITY
+    k_t = c.exponent * c.k_hertz ** (1.0 / c.exponent) * weight ** ((c.exponent - 1.0) / c.exponent)
+    m_race = min(b.inner_race_mass for b in sc.bearings.values())
+    if k_t * h * h / m_race > MAX_STEP_RATIO:
+        raise InputError("contact.k_hertz", c.k_hertz, f"too stiff for solver.step = {h:g} s: carrying the rotor's "
+                         f"weight its tangent stiffness {k_t:.3g} N/m on the inner race ({m_race:.3g} kg) gives "
+                         f"k h^2/m > {MAX_STEP_RATIO:g} (inertia below the Newton tolerance)")
+    # Hunt-Crossley damping coefficient k_visc d^e = k_visc F / k_hertz at the same load
+    damp("contact.k_visc", c.k_visc * weight / c.k_hertz, m_race, "inner race (k_visc x weight / k_hertz)")
+    for key in ("v_reg", "v_reg_axial"):
+        if getattr(c, key) > MAX_V_REG:
+            raise InputError(f"contact.{key}", getattr(c, key), f"must be <= {MAX_V_REG:g} m/s: a wider regularisation "
+                             "turns Coulomb friction into viscous damping at a landing's slip speeds (face slip "
+                             "~0.06 m/s, sleeve slip 1-30 m/s)")
+    m_rotor = sc.rotor.mass
+    stiff("amb.stiffness", sc.amb.stiffness, m_rotor, "rotor")
+    stiff("amb.axial_stiffness", sc.amb.axial_stiffness, m_rotor, "rotor")
+    damp("amb.damping", sc.amb.damping, m_rotor, "rotor")
+    damp("amb.axial_damping", sc.amb.axial_damping, m_rotor, "rotor")
+    m_outer = min(b.outer_race_mass for b in sc.bearings.values())
+    for key in ("k_cb", "k_ws", "k_h"):
+        stiff(f"axial.{key}", getattr(sc.axial, key), m_outer, "outer race (axial chain)")
+    damp("axial.c_ax", sc.axial.c_ax, m_outer, "outer race (axial chain)")
+
+    r_min = min(b.sleeve_radius for b in sc.bearings.values())
+    for key in ("cl_ax", "delta_m"):
+        if getattr(sc.axial, key) > MAX_CLEARANCE_RATIO * r_min:
+            raise InputError(f"axial.{key}", getattr(sc.axial, key), f"must be <= {MAX_CLEARANCE_RATIO:g} x the "
+                             f"smallest sleeve_radius ({MAX_CLEARANCE_RATIO * r_min:.3g} m): axial catcher clearances "
+                             "and support travel are of the order of the radial clearance")
+    c_max = max(b.static_load_rating for b in sc.bearings.values())
+    if abs(sc.axial.f_thrust) > 10.0 * c_max:
+        raise InputError("axial.f_thrust", sc.axial.f_thrust, f"|thrust| must be <= {10 * c_max:.3g} N (10 x the "
+                         "largest static_load_rating: beyond it the catcher bearing is crushed, ISO 76)")
+    for key in ("t_thrust", "ramp_s"):
+        if getattr(sc.axial, key) > MAX_T_END:
+            raise InputError(f"axial.{key}", getattr(sc.axial, key), f"must be <= {MAX_T_END:g} s (as operating.t_end)")
+    # spin damping terms on the rotor's polar inertia: drive gain and windage c_w1 + 2 c_w2 Omega
+    ip = sc.rotor.polar_inertia
+    omega = sc.speed_rpm * math.pi / 30.0
+    damp("spin.drive_gain", sc.spin.drive_gain, ip, "rotor's spin (polar inertia, kg m^2)")
+    damp("spin.c_w1", sc.spin.c_w1, ip, "rotor's spin (polar inertia, kg m^2)")
+    damp("spin.c_w2", 2.0 * sc.spin.c_w2 * omega, ip, "rotor's spin (2 c_w2 Omega on the polar inertia, kg m^2)")
+    if sc.unbalance is not None and sc.unbalance.magnitude > sc.rotor.mass * max(
+            s_.outer_diameter for s_ in sc.rotor.sections) / 2.0:
+        raise InputError("unbalance.magnitude", sc.unbalance.magnitude, "must be <= rotor mass x its largest radius "
+                         "(all of the rotor at its rim)")
+    if sc.solver.output_period > sc.t_end:
+        raise InputError("solver.output_period", sc.solver.output_period, f"must be <= operating.t_end ({sc.t_end:g} s)")
+    if sc.t_end > MAX_T_END:
+        raise InputError("operating.t_end", sc.t_end, f"must be <= {MAX_T_END:g} s (one day of simulated time; a "
+                         "landing lasts seconds, a coast-down minutes to hours)")
 
 
 def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scenario:
@@ -383,14 +553,11 @@ def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scen
     except InputError as err:
         raise err.with_file(str(path)) from None
     for item in overrides or []:
-        if "=" not in item:
-            raise InputError("--set", item, "must look like dotted.key=value")
-        key, text = item.split("=", 1)
-        key = key.strip()
+        key, text = split_override(item)
         try:
             # effects may be absent from the file yet are known switches with defaults
-            set_dotted(data, key, parse_value(text.strip()),
+            set_dotted(data, key, parse_value(text),
                        must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
         except InputError as err:
-            raise InputError(f"--set {key}", text.strip(), err.allowed) from None
+            raise InputError(f"--set {key}", text, err.allowed) from None
     return scenario_from_dict(data, source=str(path))

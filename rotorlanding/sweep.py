@@ -52,7 +52,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml
+from .config import Table, load_toml, override_table, range_spec, value_list
 from .errors import InputError
 from .whirl import landing_whirl
 
@@ -73,7 +73,7 @@ def load_sweep(path) -> dict:
         mode = t.string("mode", "grid")
         if mode not in ("grid", "monte_carlo"):
             raise InputError("mode", mode, "must be 'grid' or 'monte_carlo'")
-        fixed = dict(t.raw("fixed", {}))
+        fixed = override_table(t.raw("fixed", {}), "fixed")
         plots = t.boolean("plots", False)
         cases = []
         if mode == "grid":
@@ -81,8 +81,7 @@ def load_sweep(path) -> dict:
             if not isinstance(grid, dict) or not grid:
                 raise InputError("grid", grid, "give at least one key = [values]")
             for k, vals in grid.items():
-                if not isinstance(vals, list) or not vals:
-                    raise InputError(f"grid.{k}", vals, "must be a non-empty list of values")
+                value_list(vals, f"grid.{k}")
             keys = list(grid)
             for combo in itertools.product(*(grid[k] for k in keys)):
                 cases.append(dict(zip(keys, combo)))
@@ -96,16 +95,34 @@ def load_sweep(path) -> dict:
             rng = np.random.default_rng(t.integer("seed", 1, minimum=0))
             keys = list(ranges)
             for k in keys:
-                r = ranges[k]
-                if not (isinstance(r, dict) and set(r) == {"min", "max"} and r["min"] < r["max"]):
-                    raise InputError(f"ranges.{k}", r, "must be {min = a, max = b} with a < b")
+                range_spec(ranges[k], f"ranges.{k}")
             for _ in range(n):
                 cases.append({k: float(rng.uniform(ranges[k]["min"], ranges[k]["max"])) for k in keys})
         t.raw("grid" if mode == "monte_carlo" else "ranges", None)
         t.finish()
+        _check_cases(base, fixed, cases)
     except InputError as err:
         raise err.with_file(str(path)) from None
     return {"base": base, "mode": mode, "keys": keys, "fixed": fixed, "cases": cases, "plots": plots}
+
+
+def _check_cases(base: Path, fixed: dict, cases: list[dict]) -> None:
+    """Validate cases (scenario schema and plausibility limits) until one passes. One invalid case
+    among valid ones runs as a failed case (a sweep maps where the model breaks); a sweep whose
+    every case is invalid is bad input, reported before any worker starts. Stopping at the first
+    valid case keeps this cheap (usually one scenario load)."""
+    from .scenario import load_scenario
+
+    first = None
+    for case in cases:
+        try:
+            load_scenario(base, _overrides(fixed, case))
+            return
+        except InputError as err:
+            first = first or err
+    if first is not None:
+        raise InputError(first.field, first.value, f"{first.allowed} (every one of the {len(cases)} cases is "
+                         f"invalid{'' if first.file is None else ' for ' + str(first.file)})")
 
 
 def _overrides(fixed: dict, case: dict) -> list[str]:

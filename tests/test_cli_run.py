@@ -83,3 +83,18 @@ def test_solver_failure_keeps_results_and_exits_nonzero(tmp_path, capsys, monkey
     res = read_results(out / "results.h5")
     assert not res["attrs"]["complete"] and res["time_s"][-1] == pytest.approx(summary["t_reached_s"])
     assert "incomplete" in capsys.readouterr().err
+
+
+def test_solver_stop_names_the_extreme_quantities_and_the_likely_input(tmp_path, capsys):
+    # k_hertz 1e18 is within the plausibility limit at this step (the limit sits where the solver
+    # can no longer see the race at all) but the impacts are far harder than any landing's: Exudyn
+    # stops after ~0.03 s with "SolveDynamic terminated". The message must say what was extreme.
+    paper = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
+    rc = main(["run", str(paper), "--set", "contact.k_hertz=1e18", "--t-end", "0.05", "--no-plots", "--quiet",
+               "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert rc == 1
+    assert "SolveDynamic terminated" in err and "x rotor weight" in err and "step" in err
+    assert "likely input: contact.k_hertz" in err
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["complete"] is False and "likely input" in summary["message"]
