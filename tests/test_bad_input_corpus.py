@@ -724,10 +724,13 @@ def test_every_shipped_input_still_loads():
         elif "ranges" in data:
             calibrate.load_space(f)
             kinds["calibration space"] += 1
+        elif f.name == "reference.toml":  # the paper's numbers (validate.paper reads them)
+            assert set(data) == {"table1", "table2", "fig39"}
+            kinds["paper numbers"] += 1
         else:
             kinds["other"] += 1  # the measured feature table
     assert kinds == {"scenario": 7, "coastdown": 1, "rotor": 2, "fit-modes space": 4, "sweep": 1,
-                     "calibration space": 3, "other": 1}
+                     "calibration space": 3, "paper numbers": 1, "other": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():
             for p in effect.parameters:
