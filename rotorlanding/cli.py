@@ -132,7 +132,6 @@ def _load_case(path: str, overrides):
     from .scenario import load_scenario, scenario_from_dict
 
     if path.endswith(".h5"):
-        from pathlib import Path
 
         from .config import parse_value, set_dotted, split_override
         from .readers import read_results_guarded
@@ -393,7 +392,7 @@ def build_parser() -> argparse.ArgumentParser:
     an.add_argument("results", help="results.h5 of a rotorlanding run")
     an.add_argument("--out", default="landing.gif", help="GIF file (default landing.gif)")
     an.add_argument("--fps", type=float, default=20.0, help="frames per simulated second (default 20)")
-    an.add_argument("--view", default="DE", help="DE, NDE (bearing along the axis) or rotor (side view)")
+    an.add_argument("--view", default="DE", help="a catcher bearing of the run, e.g. DE or NDE (view along the axis), or rotor (side view)")
     an.add_argument("--max-frames", type=int, default=None, help="cap on the number of frames")
     an.set_defaults(func=cmd_animate)
 

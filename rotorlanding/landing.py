@@ -132,10 +132,7 @@ def build_spec(scenario: Scenario) -> LandingSpec:
     names = list(cb.names) + ["theta", "x_axial"]
     i_theta, i_axial = n_lat, n_lat + 1
     bearings = []
-    for bname in ("DE", "NDE"):
-        if bname not in scenario.bearings:
-            continue
-        p = scenario.bearings[bname]
+    for bname, p in scenario.bearings.items():  # the scenario's order (DE, NDE in the rig files)
         i_race = len(names)
         names += [f"{bname}.race_y", f"{bname}.race_z", f"{bname}.race_phi", f"{bname}.outer_y", f"{bname}.outer_z"]
         node = fe.station_nodes[p.station]

@@ -4,14 +4,14 @@ A scenario file holds (directly or via ``include``) these tables; field referenc
 in ``docs/scenario_file.md``::
 
     [rotor]            the rotor (docs/rotor_file.md); [rotor.reduction] is required here
-    [bearings.DE], [bearings.NDE]   catcher bearing at a rotor station (races, balls, ribbon)
+    [bearings.NAME]    one per catcher bearing (DE, NDE, or any name): station, races, balls, ribbon
     [contact]          sleeve / inner-race radial contact and axial-face friction
     [axial]            rigid-body axial model (eqs 2-5) and the thrust load profile
     [amb]              magnetic bearings before the drop (PD hold) and the drop instant
     [spin]             rotor drive and windage (eq 6)
     [unbalance]        optional unbalance
     [effects]          switches of the physical effects (model-gap workflow toggles them)
-    [operating]        speed_rpm, t_end
+    [operating]        speed_rpm, t_end, orientation (only "horizontal")
     [solver]           time step, generalized-alpha and Newton settings, output sampling
 
 Every effect has an "off" variant selected by ``[effects]``; names are listed in ``EFFECTS``.
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -43,7 +44,10 @@ EFFECTS = {
     "rotor_flexibility": True,       # keep the fixed-interface modes (false: rigid-rotor model)
 }
 
+#: the two catcher bearings of the paper's rig; any other name of letters and digits works too
+#: (a rotor with three catcher bearings: [bearings.DE], [bearings.MID], [bearings.NDE])
 BEARING_NAMES = ("DE", "NDE")
+_BEARING_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9]{0,15}$")
 
 # Physical plausibility limits (docs/scenario_file.md, "Plausibility limits"): a value beyond one is
 # not a rig that exists, and the solver would either stop or, worse, finish with numbers that mean
@@ -313,11 +317,20 @@ def _scenario(data: dict, source, name) -> Scenario:
     bt = top.table("bearings")
     bearings = {}
     for key in bt.data:
-        if key not in BEARING_NAMES:
-            raise InputError(f"bearings.{key}", bt.data[key], f"unknown bearing; allowed: {', '.join(BEARING_NAMES)}")
+        # the name prefixes every output series of the bearing (DE_contact_force_y_n): letters and
+        # digits only, so a series name splits back into bearing and quantity at its first "_"
+        if not _BEARING_NAME.match(key):
+            raise InputError(f"bearings.{key}", "(table)", "a bearing name is a letter followed by up to 15 letters "
+                             "or digits (e.g. DE, NDE, MID, B3)")
         bearings[key] = _bearing(key, bt.table(key), rotor)
     if not bearings:
-        raise InputError("bearings", {}, "define [bearings.DE] and/or [bearings.NDE]")
+        raise InputError("bearings", {}, "define at least one catcher bearing, e.g. [bearings.DE] and [bearings.NDE]")
+    seen = {}
+    for b in bearings.values():
+        if b.station in seen:
+            raise InputError(f"bearings.{b.name}.station", b.station,
+                             f"already carries bearing {seen[b.station]}: one catcher bearing per station")
+        seen[b.station] = b.name
     for b in bearings.values():
         if b.station not in rotor.reduction.boundary_stations:
             raise InputError(f"bearings.{b.name}.station", b.station,
@@ -377,11 +390,18 @@ def _scenario(data: dict, source, name) -> Scenario:
         raise InputError("effects.unbalance", True, "needs an [unbalance] table (station, magnitude)")
     if effects["worn_bearing_drag"] and not any(b.worn_drag_torque > 0 for b in bearings.values()):
         raise InputError("effects.worn_bearing_drag", True,
-                         "needs bearings.DE.worn_drag_torque and/or bearings.NDE.worn_drag_torque > 0 [N m]")
+                         "needs worn_drag_torque > 0 [N m] on at least one bearing (e.g. bearings.DE.worn_drag_torque)")
 
     o = top.table("operating")
     speed = o.number("speed_rpm", nonnegative=True)
     t_end = o.number("t_end", positive=True)
+    # gravity acts along -z of the lateral plane (races' static load, the AMB bias, the sag of the
+    # start state); a vertical machine would put it along the axis, onto the axial support
+    orientation = o.string("orientation", "horizontal")
+    if orientation != "horizontal":
+        raise InputError("operating.orientation", orientation, "only 'horizontal' is modelled: gravity acts "
+                         "laterally (-z) on the rotor and races; a vertical machine (gravity along the axis, the "
+                         "rotor resting on its axial support) is not")
     o.finish()
     if t_end <= amb.t_drop:
         raise InputError("operating.t_end", t_end, f"must be > amb.t_drop ({amb.t_drop} s)")

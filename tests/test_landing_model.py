@@ -77,7 +77,10 @@ def test_energy_balance_half_second_landing_at_7000rpm():
     e = summarize(spec, t, series)["energy"]
     assert e["dissipated_total_j"] > 50.0  # a real landing: friction heats the sleeve
     assert e["balance_error_relative"] < 0.01, e
-    assert e["dissipated_j"]["radial_friction"] > 0.5 * e["dissipated_total_j"]
+    # of what the landing itself dissipates (windage, ~1 kW at 7000 rpm, runs with or without it),
+    # the sleeve's sliding on the race is most
+    landing = e["dissipated_total_j"] - e["dissipated_j"]["windage"]
+    assert e["dissipated_j"]["radial_friction"] > 0.5 * landing
     assert all(val >= -1e-9 for val in e["dissipated_j"].values())
 
 
