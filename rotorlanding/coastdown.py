@@ -88,7 +88,8 @@ import numpy as np
 from .config import Table, load_toml, parse_value, set_dotted
 from .errors import InputError
 from .postprocess import energy_summary, evaluate, uniform
-from .safeio import WriteError, atomic_write_text, copy_file, fault, fsync_dir, fsync_path, tmp_name, unlink_quietly
+from .safeio import (WriteError, atomic_write_text, copy_file, fault, fsync_dir, fsync_path, new_h5, poison, reserve,
+                     tmp_name, unlink_quietly)
 from .scenario import Scenario, scenario_from_dict
 
 CUMULATIVE_PREFIXES = ("dissipated_", "input_")
@@ -271,7 +272,6 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_name
     """A new coast-down results.h5 with empty resizable datasets (layout of rotorlanding.results
     plus /coastdown), written under a temporary name and renamed into place (commit 0)."""
     import exudyn
-    import h5py
 
     from . import __version__
     from .results import unit_of
@@ -280,7 +280,8 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_name
     # persistent free-space tracking: a partly filled compressed HDF5 chunk is rewritten at each
     # append, and without it the space it held is lost whenever the file is closed (file 2-4x larger)
     try:
-        with h5py.File(tmp, "w", fs_strategy="fsm", fs_persist=True) as h5:
+        h5 = new_h5(tmp, CREATE_RESERVE, fs_strategy="fsm", fs_persist=True)
+        with _guard(h5, tmp):
             h5.attrs["package"] = "rotorlanding"
             h5.attrs["package_version"] = __version__
             h5.attrs["exudyn_version"] = exudyn.__version__
@@ -325,7 +326,7 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_name
         fault("create")
         fsync_path(tmp)
         os.replace(tmp, path)
-    except OSError:
+    except (OSError, WriteError):
         unlink_quietly(tmp)
         raise
     fsync_dir(path.parent)
@@ -335,6 +336,36 @@ def _utc():
     import datetime as _dt
 
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+CREATE_RESERVE = 256 << 10  # bytes reserved for a new results.h5 (its empty layout is ~60 kB)
+
+
+class _guard:
+    """``with _guard(h5, path):`` closes an HDF5 file opened for writing; if a write or the close
+    fails inside the library (OSError / RuntimeError from h5py), the file object is kept alive
+    instead (closing it again would crash the library: safeio.poison) and a WriteError naming
+    ``path`` is raised."""
+
+    def __init__(self, h5, path):
+        self.h5, self.path = h5, path
+
+    def __enter__(self):
+        return self.h5
+
+    def __exit__(self, typ, exc, tb):
+        if exc is None:
+            try:
+                self.h5.close()
+            except (OSError, RuntimeError) as err:
+                poison(self.h5)
+                raise WriteError(self.path, err) from None
+            return False
+        if isinstance(exc, (OSError, RuntimeError)) and not isinstance(exc, WriteError):
+            poison(self.h5)
+            raise WriteError(self.path, exc) from None
+        self.h5.close()
+        return False
 
 
 # --------------------------------------------------------------------------------------------
@@ -477,27 +508,13 @@ class Checkpoint:
         self.spare = tmp_name(path, "spare")
         self.prev = tmp_name(path, "prev")
         self.spare_ok = False  # the spare is a closed earlier commit of this process (else: copy)
+        self.allowance = None  # bytes: see _margin
 
     def discard_leftovers(self):
         """A spare or prev left by a killed process may be half written: never open it."""
         for p in (self.spare, self.prev, tmp_name(self.path, "part"), tmp_name(self.path, "repack")):
             unlink_quietly(p)
         self.spare_ok = False
-
-    def open_spare(self, k: int | None = None) -> Store:
-        """The spare opened for writing, brought up to date with results.h5 and cut to its commit."""
-        if not self.spare_ok:
-            copy_file(self.path, self.spare, point="copy", chunk=k)
-        work = Store(self.spare, "a")
-        try:
-            with Store(self.path, "r") as src:
-                work.sync_from(src)
-            work.truncate()
-        except BaseException:
-            work.close()
-            raise
-        fault("synced", k)
-        return work
 
     def publish(self, k: int | None = None):
         """Make the closed spare the committed results.h5 (fsync, link, rename, fsync dir)."""
@@ -518,17 +535,50 @@ class Checkpoint:
         fault("rotated", k)
         fsync_dir(self.path.parent)
 
-    def write_chunk(self, fill, k: int | None = None):
-        """One commit: ``fill(store)`` appends into the up-to-date spare; then close and publish.
-        Any error leaves results.h5 as it was (the spare is dropped)."""
+    def _margin(self, new_bytes: int) -> int:
+        """Bytes to reserve in the spare for one commit: the rows it lacks (twice their size in
+        results.h5), the new chunk (twice its raw size), every dataset's last HDF5 chunk written
+        anew (a compressed chunk moves when it grows; at most its raw size), and 64 kB of metadata.
+        Measured on the short test run: the spare grows by 0.05-0.25 MB per commit, the margin is
+        ~1 MB."""
+        import h5py
+
+        if self.allowance is None:
+            total = 0
+            with h5py.File(self.path, "r") as h5:
+                def visit(_, obj):
+                    nonlocal total
+                    if isinstance(obj, h5py.Dataset) and obj.chunks:
+                        total += int(np.prod(obj.chunks)) * obj.dtype.itemsize
+                h5.visititems(visit)
+            self.allowance = total + (64 << 10)
+        lag = max(self.path.stat().st_size - self.spare.stat().st_size, 0)
+        return 2 * lag + 2 * int(new_bytes) + self.allowance
+
+    def write_chunk(self, fill, k: int | None = None, new_bytes: int = 0):
+        """One commit: bring the spare up to date with results.h5 (a copy if it is not a closed
+        earlier commit of this process), cut it to its commit, ``fill(store)`` appends the chunk
+        and its commit record, close, publish. Any error leaves results.h5 as it was (the spare is
+        dropped) and a failed write raises WriteError naming the file."""
         try:
-            work = self.open_spare(k)
             try:
+                if not self.spare_ok:
+                    copy_file(self.path, self.spare, point="copy", chunk=k)
+                reserve(self.spare, self._margin(new_bytes))
+            except OSError as exc:
+                raise WriteError(self.spare, exc) from None
+            work = Store(self.spare, "a")
+            with _guard(work.h5, self.spare):
+                with Store(self.path, "r") as src:
+                    work.sync_from(src)
+                work.truncate()
+                fault("synced", k)
                 fill(work)
-            finally:
-                work.close()
             fault("closed", k)
-            self.publish(k)
+            try:
+                self.publish(k)
+            except OSError as exc:
+                raise WriteError(self.path, exc) from None
         except BaseException:
             self.spare_ok = False
             unlink_quietly(self.spare)
@@ -542,8 +592,6 @@ def verify_checkpoint(path: Path, spec, stream=None) -> dict:
     Checked: every chunk's hash-chain link over its stored rows and chunk row, the committed row
     counts against the dataset lengths, the restart state's hash, and that the restart state is
     bitwise the last committed row (its time, q and v)."""
-    import h5py
-
     def refuse(why):
         return InputError("--resume", str(path), f"{why}; start over with --overwrite")
 
@@ -581,7 +629,9 @@ def verify_checkpoint(path: Path, spec, stream=None) -> dict:
     # truncate to the last consistent chunk: a new commit with the restart record rebuilt from it
     tmp = tmp_name(path, "repack")
     copy_file(path, tmp)
-    with Store(tmp, "a") as st:
+    reserve(tmp, CREATE_RESERVE)  # a repair only shrinks datasets and rewrites a few attributes
+    st = Store(tmp, "a")
+    with _guard(st.h5, tmp):
         st.r.attrs.update(n_rows=r0, chunks=good)
         st.truncate()
         if good:
@@ -683,8 +733,9 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
         atomic_write_text(out / "summary.json", json.dumps(RUNNING_SUMMARY | {"scenario": scenario.name}, indent=2))
         summary = _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots)
         max_buffer = summary.pop("_max_buffer")
-    except OSError as exc:
-        raise WriteError(getattr(exc, "filename", None) or path, exc) from None
+    except (OSError, WriteError) as exc:
+        err = exc if isinstance(exc, WriteError) else WriteError(getattr(exc, "filename", None) or path, exc)
+        raise WriteError(path, err.exc, _kept(path)) from None
     finally:
         ckpt.discard_leftovers()  # the spare doubles the disk use; a resume copies it anew
     summary["performance"]["max_buffer_samples_this_process"] = max_buffer
@@ -693,6 +744,16 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     except OSError as exc:
         raise WriteError(out / "summary.json", exc) from None
     return summary
+
+
+def _kept(path: Path) -> str:
+    """What a failed write left behind (results.h5 is never written in place)."""
+    try:
+        rs = read_restart(path)
+    except Exception:  # noqa: BLE001 - only the message depends on it
+        return "nothing was committed"
+    return (f"the checkpoint at t = {float(rs['t_s']):g} s ({int(rs['chunks'])} chunks) is intact: "
+            "continue with --resume once there is space")
 
 
 RUNNING_SUMMARY = {"kind": "coastdown", "complete": False, "status": "running",
@@ -797,7 +858,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots) -
             state["done"] = bool(r.attrs["stop_reason"])
             state["t_commit"] = time.perf_counter()
 
-        ckpt.write_chunk(fill, k)
+        ckpt.write_chunk(fill, k, new_bytes=8 * (len(t) * (1 + 2 * spec.n + len(series)) + 64))
         done, t_commit = state["done"], state["t_commit"]
         now = time.perf_counter()
         if stream and (now - last_print > 2.0 or done):
@@ -932,7 +993,8 @@ def repack(path: Path, attrs: dict | None = None, summary_json: str | None = Non
 
     tmp = tmp_name(path, "repack")
     try:
-        with h5py.File(path, "r") as src, h5py.File(tmp, "w", fs_strategy="fsm", fs_persist=True) as dst:
+        dst = new_h5(tmp, path.stat().st_size + CREATE_RESERVE, fs_strategy="fsm", fs_persist=True)
+        with _guard(dst, tmp), h5py.File(path, "r") as src:
             for key, val in src.attrs.items():
                 dst.attrs[key] = val
             dst.attrs.update(attrs or {})
@@ -944,7 +1006,7 @@ def repack(path: Path, attrs: dict | None = None, summary_json: str | None = Non
         fault("repacked")
         fsync_path(tmp)
         os.replace(tmp, path)
-    except OSError:
+    except (OSError, WriteError):
         unlink_quietly(tmp)
         raise
     fsync_dir(path.parent)

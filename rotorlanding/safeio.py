@@ -5,6 +5,14 @@ file system), flush, ``fsync`` it, ``os.replace`` it over the target, ``fsync`` 
 the rename itself survives a power cut). A process killed at any moment leaves either the old
 file or the new one, never a mix.
 
+HDF5 and full disks: when a write fails inside the HDF5 library (disk full, file too large, I/O
+error), the file object is left half closed and closing it, freeing it or leaving the interpreter
+makes the library crash (segfault). Two defences: (1) space is reserved with ``posix_fallocate``
+*before* HDF5 writes (:func:`reserve`, :func:`new_h5`), so a full disk shows up as a clean
+``OSError`` in plain Python code and HDF5 writes land in blocks already allocated (the library
+cuts the file back to its real end when it closes it); (2) should HDF5 still fail, the file object
+is kept alive (:func:`poison`) and the CLI leaves through ``os._exit`` after its one-line message.
+
 Fault injection: ``ROTORLANDING_FAULT=point`` or ``point:N`` (N: the chunk index, for the
 coast-down's per-chunk points) makes :func:`fault` kill the process with SIGKILL when the write
 path passes that named point. Only tests and ``benchmarks/fault_injection.py`` set it.
@@ -12,8 +20,11 @@ path passes that named point. Only tests and ``benchmarks/fault_injection.py`` s
 
 from __future__ import annotations
 
+import errno
+import itertools
 import os
 import signal
+import sys
 from pathlib import Path
 
 FAULT_ENV = "ROTORLANDING_FAULT"
@@ -24,11 +35,12 @@ class WriteError(Exception):
 
     The CLI prints ``str(err)`` on one line and exits with :data:`rotorlanding.cli.EXIT_IO`."""
 
-    def __init__(self, path, exc: BaseException):
+    def __init__(self, path, exc: BaseException, hint: str = ""):
         self.path = str(path)
         self.exc = exc
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        super().__init__(f"cannot write {self.path}: {reason}".replace("\n", " "))
+        self.hint = hint
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc).splitlines()[0]
+        super().__init__(f"cannot write {self.path}: {reason}{'; ' + hint if hint else ''}".replace("\n", " "))
 
 
 def fault(point: str, chunk: int | None = None) -> None:
@@ -40,6 +52,67 @@ def fault(point: str, chunk: int | None = None) -> None:
     name, _, n = want.partition(":")
     if name == point and (not n or chunk is None or int(n) == chunk):
         os.kill(os.getpid(), signal.SIGKILL)
+
+
+_POISONED: list = []
+_image_ids = itertools.count()
+
+
+def poison(obj) -> None:
+    """Keep an HDF5 object whose write failed alive: freeing or closing it can crash the library."""
+    _POISONED.append(obj)
+
+
+def poisoned() -> bool:
+    """True if an HDF5 write failed in this process (exit with os._exit, see the module doc)."""
+    return bool(_POISONED)
+
+
+def hard_exit(code: int) -> None:
+    """Flush Python's streams and leave without the HDF5 library's shutdown (see the module doc)."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
+
+
+def reserve(path, nbytes: int) -> None:
+    """Allocate ``nbytes`` of disk beyond the end of ``path`` (before HDF5 opens it), so a full
+    disk or a file-size limit fails here, cleanly, with an OSError (ENOSPC, EFBIG). HDF5 ignores
+    bytes past its end-of-allocation and truncates them when it closes the file. A file system
+    without fallocate is skipped (glibc emulates it elsewhere)."""
+    if nbytes <= 0 or not hasattr(os, "posix_fallocate"):
+        return
+    fd = os.open(path, os.O_WRONLY)
+    try:
+        os.posix_fallocate(fd, os.fstat(fd).st_size, int(nbytes))
+    except OSError as exc:
+        if exc.errno not in (errno.EOPNOTSUPP, errno.EINVAL, errno.ENOSYS):
+            raise
+    finally:
+        os.close(fd)
+
+
+def new_h5(path, reserve_bytes: int, **create):
+    """A new, empty HDF5 file at ``path`` opened for writing, with ``reserve_bytes`` of disk
+    reserved. The empty file is built in memory and written with plain I/O (h5py's "w" mode would
+    truncate a reservation); ``create``: file-creation keywords of h5py.File (fs_strategy, ...)."""
+    import h5py
+
+    with h5py.File(f"rotorlanding-image-{os.getpid()}-{next(_image_ids)}", "w", driver="core",
+                   backing_store=False, **create) as mem:
+        mem.flush()
+        image = mem.id.get_file_image()
+    try:
+        with open(path, "wb") as fh:
+            fh.write(image)
+        reserve(path, reserve_bytes)
+    except OSError:
+        _unlink(path)
+        raise
+    return h5py.File(path, "a")
 
 
 def fsync_path(path) -> None:
