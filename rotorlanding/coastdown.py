@@ -88,8 +88,9 @@ import numpy as np
 from .config import Table, load_toml, parse_value, set_dotted
 from .errors import InputError
 from .postprocess import energy_summary, evaluate, uniform
-from .safeio import (WriteError, atomic_write_text, copy_file, fault, fsync_dir, fsync_path, new_h5, poison, reserve,
-                     tmp_name, unlink_quietly)
+from .safeio import WriteError, atomic_write_text, check_out_dir, copy_file, fault, fsync_dir, fsync_path, new_h5, reserve, tmp_name
+from .safeio import h5_guard as _guard
+from .safeio import unlink_quietly
 from .scenario import Scenario, scenario_from_dict
 
 CUMULATIVE_PREFIXES = ("dissipated_", "input_")
@@ -339,33 +340,6 @@ def _utc():
 
 
 CREATE_RESERVE = 256 << 10  # bytes reserved for a new results.h5 (its empty layout is ~60 kB)
-
-
-class _guard:
-    """``with _guard(h5, path):`` closes an HDF5 file opened for writing; if a write or the close
-    fails inside the library (OSError / RuntimeError from h5py), the file object is kept alive
-    instead (closing it again would crash the library: safeio.poison) and a WriteError naming
-    ``path`` is raised."""
-
-    def __init__(self, h5, path):
-        self.h5, self.path = h5, path
-
-    def __enter__(self):
-        return self.h5
-
-    def __exit__(self, typ, exc, tb):
-        if exc is None:
-            try:
-                self.h5.close()
-            except (OSError, RuntimeError) as err:
-                poison(self.h5)
-                raise WriteError(self.path, err) from None
-            return False
-        if isinstance(exc, (OSError, RuntimeError)) and not isinstance(exc, WriteError):
-            poison(self.h5)
-            raise WriteError(self.path, exc) from None
-        self.h5.close()
-        return False
 
 
 # --------------------------------------------------------------------------------------------
@@ -696,8 +670,7 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     from .exudyn_model import SolverSettings, build_exudyn, collect, solve
     from .landing import build_spec
 
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = check_out_dir(out_dir)  # an existing file, /dev/null, an unwritable folder: exit 2 before any work
     path = out / "results.h5"
     spec = build_spec(scenario)
     settings = SolverSettings.from_spec(spec)

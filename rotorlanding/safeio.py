@@ -78,6 +78,33 @@ def hard_exit(code: int) -> None:
     os._exit(code)
 
 
+class h5_guard:
+    """``with h5_guard(h5, path):`` closes an HDF5 file opened for writing; if a write or the close
+    fails inside the library (OSError / RuntimeError from h5py), the file object is kept alive
+    instead (closing it again would crash the library: safeio.poison) and a WriteError naming
+    ``path`` is raised."""
+
+    def __init__(self, h5, path):
+        self.h5, self.path = h5, path
+
+    def __enter__(self):
+        return self.h5
+
+    def __exit__(self, typ, exc, tb):
+        if exc is None:
+            try:
+                self.h5.close()
+            except (OSError, RuntimeError) as err:
+                poison(self.h5)
+                raise WriteError(self.path, err) from None
+            return False
+        if isinstance(exc, (OSError, RuntimeError)) and not isinstance(exc, WriteError):
+            poison(self.h5)
+            raise WriteError(self.path, exc) from None
+        self.h5.close()
+        return False
+
+
 def reserve(path, nbytes: int) -> None:
     """Allocate ``nbytes`` of disk beyond the end of ``path`` (before HDF5 opens it), so a full
     disk or a file-size limit fails here, cleanly, with an OSError (ENOSPC, EFBIG). HDF5 ignores
@@ -113,6 +140,35 @@ def new_h5(path, reserve_bytes: int, **create):
         _unlink(path)
         raise
     return h5py.File(path, "a")
+
+
+def check_out_dir(out, option: str = "--out") -> Path:
+    """Validate an output folder before any work is done: an existing non-folder (a regular
+    file, /dev/null), a folder that cannot be created or written to is bad input (InputError,
+    exit 2); a full disk found by the probe is a WriteError. Creates the folder."""
+    from .errors import InputError
+
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise InputError(option, str(out), "exists and is not a folder (results go into a folder)")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(option, str(out), f"cannot be created: {exc.strerror or exc}") from None
+    probe = out / f".rotorlanding-probe-{os.getpid()}"
+    try:
+        fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        try:
+            os.write(fd, b"x")
+        finally:
+            os.close(fd)
+    except OSError as exc:
+        _unlink(probe)
+        if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOTDIR, errno.EISDIR):
+            raise InputError(option, str(out), f"is not writable: {exc.strerror}") from None
+        raise WriteError(out, exc) from None
+    _unlink(probe)
+    return out
 
 
 def fsync_path(path) -> None:
