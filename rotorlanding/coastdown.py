@@ -541,7 +541,18 @@ class Checkpoint:
                 reserve(self.spare, self._margin(new_bytes))
             except OSError as exc:
                 raise WriteError(self.spare, exc) from None
-            work = Store(self.spare, "a")
+            try:
+                work = Store(self.spare, "a")
+            except BlockingIOError:
+                # a reader still holds the previous results.h5 (now the spare) open, and HDF5
+                # locks it: never write under a reader's feet, take a fresh copy instead
+                unlink_quietly(self.spare)
+                try:
+                    copy_file(self.path, self.spare)
+                    reserve(self.spare, self._margin(new_bytes))
+                except OSError as exc:
+                    raise WriteError(self.spare, exc) from None
+                work = Store(self.spare, "a")
             with _guard(work.h5, self.spare):
                 with Store(self.path, "r") as src:
                     work.sync_from(src)

@@ -137,3 +137,45 @@ def test_disk_full_stops_with_one_line_keeps_the_checkpoint_and_resumes_exactly(
     rc, err = fh.run(out, resume=True)
     assert rc == 0, err
     assert fh.same(fh.snapshot(out), ref)
+
+
+def test_a_reader_holding_results_open_does_not_stop_the_run(tmp_path, ref):
+    """A viewer keeps every results.h5 it opened open across commits (HDF5 locks them): the run
+    never writes into a file a reader holds (it copies instead) and ends like the reference.
+    Before issue 16 the run died with `unable to lock file` at the next commit."""
+    import subprocess
+    import time
+
+    out = tmp_path / "cd"
+    proc = subprocess.Popen(fh.args(out), env=fh.env(), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    held = []
+    try:
+        while proc.poll() is None:
+            try:
+                h5 = h5py.File(out / "results.h5", "r")
+                held.append((h5, int(h5["coastdown/restart"].attrs["chunks"])))
+            except (OSError, KeyError):
+                pass  # not there yet
+            time.sleep(0.05)
+        err = proc.stderr.read()
+        assert proc.returncode == 0, err
+        assert len({n for _, n in held}) >= 2  # files of at least two different commits were held open
+        for h5, n in held:  # what a reader opened stays a consistent commit
+            assert h5["coastdown/commits/n_rows"].shape[0] == n
+    finally:
+        for h5, _ in held:
+            h5.close()
+    assert fh.same(fh.snapshot(out), ref)
+
+
+@pytest.mark.parametrize("where", ["devnull", "file"])
+def test_coastdown_bad_out_is_refused_before_work(tmp_path, where):
+    target = Path("/dev/null") if where == "devnull" else tmp_path / "x.txt"
+    if where == "file":
+        target.write_text("keep\n")
+    proc = subprocess.run(fh.args(target), env=fh.env(), capture_output=True, text=True)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "--out" in lines[0] and "not a folder" in lines[0]
+    if where == "file":
+        assert target.read_text() == "keep\n"
