@@ -42,6 +42,8 @@ def main(argv=None) -> int:
     print(f"\n{tally['trials']} trials ({named} named points + {a.random} random kills), "
           f"{tally['killed']} processes killed; resumed bit-exact {tally['exact']}, refused {tally['refused']}, "
           f"wrong {tally['wrong']}, error {tally['error']}; {time.perf_counter() - t0:.0f} s")
+    print("what the kills left (committed chunks of 4; +spare: a spare was being written):",
+          ", ".join(f"{k}: {v}" for k, v in sorted(tally["left_by_kills"].items())))
     if a.json:
         Path(a.json).write_text(json.dumps(res, indent=2, default=str))
     return 0 if tally["wrong"] == 0 and tally["error"] == 0 else 1

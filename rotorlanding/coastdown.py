@@ -354,16 +354,17 @@ def _state_digest(q, v, t_s: float, chunks: int, n_rows: int) -> str:
     return h.hexdigest()
 
 
-def _chunk_digest(prev: str, h5, row_paths, r0: int, r1: int, chunk_paths, j: int) -> str:
+def _chunk_digest(prev: str, ds, row_paths, r0: int, r1: int, chunk_paths, j: int) -> str:
     """Link j of the hash chain: the previous link, the chunk's rows [r0, r1) of every row dataset
-    and row j of every chunk column, exactly as stored (read back from the file)."""
+    and row j of every chunk column, exactly as stored (read back from the file; ``ds(path)``
+    returns a dataset)."""
     h = hashlib.sha256(prev.encode())
     for p in row_paths:
         h.update(p.encode())
-        h.update(np.ascontiguousarray(h5[p][r0:r1]).tobytes())
+        h.update(np.ascontiguousarray(ds(p)[r0:r1]).tobytes())
     for p in chunk_paths:
         h.update(p.encode())
-        h.update(np.ascontiguousarray(h5[p][j:j + 1]).tobytes())
+        h.update(np.ascontiguousarray(ds(p)[j:j + 1]).tobytes())
     return h.hexdigest()
 
 
@@ -378,17 +379,37 @@ class Store:
         self.h5 = h5py.File(path, mode)
         try:
             h5 = self.h5
-            self.rows = {"time_s": h5["time_s"], "q": h5["states/q"], "v": h5["states/v"]}
-            self.series = {k: h5["series"][k] for k in h5["series"]}
-            self.chunks = {k: h5["coastdown/chunks"][k] for k in h5["coastdown/chunks"]}
             self.r = h5["coastdown/restart"]
             self.commits = h5["coastdown/commits"] if "coastdown/commits" in h5 else None
+            series_names = sorted(h5["series"].keys())  # names only: datasets are opened on demand
+            chunk_names = sorted(h5["coastdown/chunks"].keys())
         except Exception:
             self.h5.close()
             raise
-        self.cumulative = [k for k in self.series if k.startswith(CUMULATIVE_PREFIXES)]
-        self.row_paths = ["time_s", "states/q", "states/v"] + [f"series/{k}" for k in sorted(self.series)]
-        self.chunk_paths = [f"coastdown/chunks/{k}" for k in sorted(self.chunks)]
+        self._ds = {}
+        self.cumulative = [k for k in series_names if k.startswith(CUMULATIVE_PREFIXES)]
+        self.row_paths = ["time_s", "states/q", "states/v"] + [f"series/{k}" for k in series_names]
+        self.chunk_paths = [f"coastdown/chunks/{k}" for k in chunk_names]
+
+    def ds(self, p: str):
+        """The dataset at path ``p``, opened once (h5py path lookups cost ~0.1 ms each, and a
+        commit touches ~100 datasets several times)."""
+        d = self._ds.get(p)
+        if d is None:
+            d = self._ds[p] = self.h5[p]
+        return d
+
+    @property
+    def rows(self) -> dict:
+        return {"time_s": self.ds("time_s"), "q": self.ds("states/q"), "v": self.ds("states/v")}
+
+    @property
+    def series(self) -> dict:
+        return {p[7:]: self.ds(p) for p in self.row_paths[3:]}
+
+    @property
+    def chunks(self) -> dict:
+        return {p[17:]: self.ds(p) for p in self.chunk_paths}
 
     def __enter__(self):
         return self
@@ -401,7 +422,7 @@ class Store:
         out["q"] = self.r["q"][()]
         out["v"] = self.r["v"][()]
         n = int(out["n_rows"])
-        out["offsets"] = {k: float(self.series[k][n - 1]) if n else 0.0 for k in self.cumulative}
+        out["offsets"] = {k: float(self.ds(f"series/{k}")[n - 1]) if n else 0.0 for k in self.cumulative}
         return out
 
     def _row_sets(self):
@@ -415,7 +436,7 @@ class Store:
         has committed are identical in ``src`` (committed rows never change), so only the rows
         from this file's commit on are copied (one or two chunks), not the whole file."""
         for p, m in self._row_sets():
-            s, d = src.h5[p], self.h5[p]
+            s, d = src.ds(p), self.ds(p)
             n = s.shape[0]
             m = min(m, n, d.shape[0])
             d.resize(n, axis=0)
@@ -436,24 +457,24 @@ class Store:
         """Drop rows written after the last commit (the partial chunk of a failed solve, or rows
         appended by hand)."""
         for p, n in self._row_sets():
-            ds = self.h5[p]
+            ds = self.ds(p)
             if ds.shape[0] > n:
                 ds.resize(n, axis=0)
 
     def append(self, t, q, v, series: dict, chunk: int | None = None):
-        _append(self.rows["time_s"], t)
+        _append(self.ds("time_s"), t)
         fault("mid-append", chunk)  # time_s longer than the states: a torn append
-        for ds, arr in ((self.rows["q"], q), (self.rows["v"], v)):
+        for ds, arr in ((self.ds("states/q"), q), (self.ds("states/v"), v)):
             _append(ds, arr)
         for name, arr in series.items():
-            _append(self.series[name], arr)
+            _append(self.ds(f"series/{name}"), arr)
 
     def commit(self, k: int, q, v, t1: float, **attrs):
         """Restart record and hash-chain link for chunk ``k`` (its rows and chunks/* row appended)."""
-        n = self.rows["time_s"].shape[0]
+        n = self.ds("time_s").shape[0]
         prev = str(self.r.attrs.get("rows_sha256", ""))
         r0 = int(self.r.attrs["n_rows"])
-        link = _chunk_digest(prev, self.h5, self.row_paths, r0, n, self.chunk_paths, k)
+        link = _chunk_digest(prev, self.ds, self.row_paths, r0, n, self.chunk_paths, k)
         _append(self.commits["n_rows"], [n])
         _append(self.commits["sha256"], [link.encode()])
         self.r["q"][...] = q
@@ -586,15 +607,15 @@ def verify_checkpoint(path: Path, spec, stream=None) -> dict:
                 raise refuse("has no commit record (written by an older rotorlanding)")
             h5 = st.h5
             K, N = int(st.r.attrs["chunks"]), int(st.r.attrs["n_rows"])
-            n_min = min(h5[p].shape[0] for p in st.row_paths)
-            c_min = min(h5[p].shape[0] for p in st.chunk_paths)
+            n_min = min(st.ds(p).shape[0] for p in st.row_paths)
+            c_min = min(st.ds(p).shape[0] for p in st.chunk_paths)
             cn, cs = st.commits["n_rows"][()], st.commits["sha256"][()]
             good, prev, r0 = 0, "", 0
             for j in range(min(K, len(cn), len(cs), c_min)):
                 r1 = int(cn[j])
                 if not r0 < r1 <= n_min:
                     break
-                link = _chunk_digest(prev, h5, st.row_paths, r0, r1, st.chunk_paths, j)
+                link = _chunk_digest(prev, st.ds, st.row_paths, r0, r1, st.chunk_paths, j)
                 if link != cs[j].decode():
                     break
                 good, prev, r0 = j + 1, link, r1
@@ -819,7 +840,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots) -
                         series[b + "_contact_force_y_n"] + series[b + "_rub_force_y_n"],
                         series[b + "_contact_force_z_n"] + series[b + "_rub_force_z_n"])))
                 for name, val in row.items():
-                    _append(store.chunks[name], [val])
+                    _append(store.ds(f"coastdown/chunks/{name}"), [val])
                 reason = ""
                 if speed_now <= stop_rpm:
                     reason = f"rotor speed {speed_now:.1f} rpm <= stop_speed_rpm {stop_rpm:g}"

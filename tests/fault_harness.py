@@ -133,6 +133,19 @@ def same(a: dict, b: dict) -> bool:
     return a.keys() == b.keys() and all(np.array_equal(a[k], b[k], equal_nan=True) for k in a)
 
 
+def _left(out: Path) -> str:
+    """What a kill left: 'nothing' (before results.h5), 'chunks=N' (committed chunks), plus
+    '+spare' when a spare (possibly half written) was beside it."""
+    if not (out / "results.h5").exists():
+        return "nothing"
+    try:
+        with h5py.File(out / "results.h5", "r") as h5:
+            n = int(h5["coastdown/restart"].attrs["chunks"])
+    except (OSError, KeyError) as exc:  # must not happen: results.h5 is only ever a whole commit
+        return f"unreadable ({exc})"
+    return f"chunks={n}" + ("+spare" if (out / ".results.h5.spare").exists() else "")
+
+
 def _claims_complete(out: Path) -> bool:
     try:
         return bool(json.loads((out / "summary.json").read_text()).get("complete"))
@@ -146,7 +159,8 @@ def trial(out: Path, ref: dict, *, fault=None, kill_after=None, overrides=TINY, 
     ``wrong`` (a result that differs from the reference, or `complete` where it is not), ``error``."""
     rc1, err1 = (run if mode == "cli" else run_fork)(out, overrides, fault=fault, kill_after=kill_after)
     killed = rc1 == -signal.SIGKILL
-    info = {"fault": fault, "kill_after": kill_after, "killed": killed, "rc_killed": rc1}
+    info = {"fault": fault, "kill_after": kill_after, "killed": killed, "rc_killed": rc1,
+            "left": _left(out) if killed else None}
     if not killed and rc1 != 0:
         return info | {"outcome": "error", "detail": err1[-500:]}
     # never a wrong `complete`: a summary that says so must describe the reference result
@@ -194,6 +208,7 @@ def campaign(base: Path, n_random: int, points=POINTS, seed: int = 16, stream=No
         res = trial(base / f"t{i:03d}", ref, fault=fault, kill_after=delay, mode=mode)
         if stream:
             stream.write(f"{i:3d} {fault or f'kill after {delay:.2f} s':24s} killed={res['killed']!s:5s} "
+                         f"left={res['left']!s:16s} "
                          f"{res['outcome']}{(': ' + res['detail']) if res.get('detail') else ''}\n")
             stream.flush()
         return res
@@ -203,5 +218,11 @@ def campaign(base: Path, n_random: int, points=POINTS, seed: int = 16, stream=No
     tally = {k: sum(r["outcome"] == k for r in results) for k in ("exact", "refused", "wrong", "error")}
     tally["trials"] = len(results)
     tally["killed"] = sum(r["killed"] for r in results)
+    tally["left_by_kills"] = {}
+    for r in results:
+        if r["killed"]:
+            key = r["left"] if not str(r["left"]).startswith("chunks=") else r["left"].split("+")[0] + \
+                ("+spare" if "+spare" in r["left"] else "")
+            tally["left_by_kills"][key] = tally["left_by_kills"].get(key, 0) + 1
     tally["reference_wall_s"] = wall
     return {"tally": tally, "trials": results}
