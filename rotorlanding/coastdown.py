@@ -699,7 +699,7 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     there simulates an interruption). ``progress``: True/False or a stream."""
     import h5py
 
-    from .exudyn_model import SolverSettings, build_exudyn, collect, solve
+    from .exudyn_model import SolverSettings
     from .landing import build_spec
 
     out = check_out_dir(out_dir)  # an existing file, /dev/null, an unwritable folder: exit 2 before any work

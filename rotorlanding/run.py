@@ -19,8 +19,6 @@ from __future__ import annotations
 import json
 import sys
 import time
-from pathlib import Path
-
 
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
