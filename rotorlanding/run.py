@@ -19,6 +19,8 @@ from __future__ import annotations
 import json
 import sys
 import time
+from pathlib import Path
+
 
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
@@ -80,7 +82,7 @@ def simulate(scenario: Scenario, *, progress: bool | None = None):
 
 def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True) -> dict:
     """Simulate and write results.h5, summary.json and the figures into ``out_dir``."""
-    out = check_out_dir(out_dir)  # before the solve: a bad --out is found at once
+    out = check_out_dir(Path(out_dir))  # before the solve: a bad --out is found at once
     try:
         atomic_write_text(out / "summary.json", json.dumps(RUNNING_SUMMARY | {"scenario": scenario.name}, indent=2))
         unlink_quietly(out / "results.h5")  # an earlier run's results must not outlive this run's start
