@@ -580,6 +580,7 @@ class Checkpoint:
                 work.truncate()
                 fault("synced", k)
                 fill(work)
+                work.h5.flush()  # a failed write surfaces here, inside the guard (not in a dealloc)
             fault("closed", k)
             try:
                 self.publish(k)

@@ -63,7 +63,12 @@ def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[s
     try:
         h5 = new_h5(tmp, need)
         with h5_guard(h5, tmp):
-            _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached, message)
+            # the datasets stay referenced until the flush: one freed earlier flushes its data
+            # on its own, where a failed write cannot be caught
+            held = _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached,
+                         message)
+            h5.flush()
+            del held
         fault("results-written")
         fsync_path(tmp)
         os.replace(tmp, path)
@@ -74,8 +79,11 @@ def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[s
     return path
 
 
-def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached, message):
+def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached, message) -> list:
+    """Write the layout into the open file; returns the datasets created (see write_results)."""
     import exudyn
+
+    held = []
 
     h5.attrs["package"] = "rotorlanding"
     h5.attrs["package_version"] = __version__
@@ -85,9 +93,9 @@ def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, comp
     h5.attrs["t_reached_s"] = float(t_reached)
     h5.attrs["message"] = message
     h5.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-    h5["scenario_json"] = json.dumps(scenario_raw)
-    h5["time_s"] = np.asarray(t)
-    h5["time_s"].attrs["unit"] = "s"
+    held.append(h5.create_dataset("scenario_json", data=json.dumps(scenario_raw)))
+    held.append(h5.create_dataset("time_s", data=np.asarray(t)))
+    held[-1].attrs["unit"] = "s"
     g = h5.create_group("states")
     for key, arr, vel in (("q", q, False), ("v", v, True)):
         ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4)
@@ -96,11 +104,14 @@ def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, comp
             units = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in units]
         ds.attrs["names"] = json.dumps(names)
         ds.attrs["units"] = json.dumps(units)
+        held.append(ds)
     s = h5.create_group("series")
     for name, arr in series.items():
         ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4)
         ds.attrs["unit"] = unit_of(name)
-    h5["summary_json"] = json.dumps(summary)
+        held.append(ds)
+    held.append(h5.create_dataset("summary_json", data=json.dumps(summary)))
+    return held + [g, s]
 
 
 def read_results(path) -> dict:

@@ -39,7 +39,10 @@ class WriteError(Exception):
         self.path = str(path)
         self.exc = exc
         self.hint = hint
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc).splitlines()[0]
+        if isinstance(exc, OSError) and exc.errno:  # "No space left on device", not HDF5's page
+            reason = os.strerror(exc.errno)
+        else:
+            reason = (str(exc).splitlines() or [type(exc).__name__])[0]
         super().__init__(f"cannot write {self.path}: {reason}{'; ' + hint if hint else ''}".replace("\n", " "))
 
 
@@ -99,7 +102,9 @@ class h5_guard:
                 raise WriteError(self.path, err) from None
             return False
         if isinstance(exc, (OSError, RuntimeError)) and not isinstance(exc, WriteError):
-            poison(self.h5)
+            # the traceback holds the frames whose datasets and groups are still open: freeing
+            # them would flush into the failed file as well
+            poison((self.h5, exc, tb))
             raise WriteError(self.path, exc) from None
         self.h5.close()
         return False

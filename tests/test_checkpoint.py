@@ -179,3 +179,30 @@ def test_coastdown_bad_out_is_refused_before_work(tmp_path, where):
     assert len(lines) == 1 and "--out" in lines[0] and "not a folder" in lines[0]
     if where == "file":
         assert target.read_text() == "keep\n"
+
+
+NO_RESERVE = ("import resource, signal, sys\n"
+              "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+              "resource.setrlimit(resource.RLIMIT_FSIZE, ({n}, {n}))\n"
+              "import rotorlanding.coastdown as C, rotorlanding.results as R, rotorlanding.safeio as S\n"
+              "S.reserve = C.reserve = lambda *a, **k: None  # HDF5 itself meets the limit\n"
+              "from rotorlanding.cli import main\n"
+              "sys.exit(main(sys.argv[1:]))\n")
+
+
+def test_write_failing_inside_hdf5_is_still_one_line_and_no_crash(tmp_path, ref):
+    """Without the space reservation the write fails inside the HDF5 library (which used to end
+    in a segfault, exit 139): still exit 3 and one line; the last commit is intact and resumes."""
+    import sys
+
+    out = tmp_path / "cd"
+    cmd = [sys.executable, "-c", NO_RESERVE.format(n=380_000)] + fh.args(out)[3:]
+    proc = subprocess.run(cmd, env=fh.env(), capture_output=True, text=True)
+    assert proc.returncode == 3, proc.stderr[-2000:]
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("rotorlanding: error: cannot write") and "results.h5" in lines[0]
+    spec = build_spec(load_coastdown(fh.SCEN, fh.TINY)[0])
+    assert verify_checkpoint(out / "results.h5", spec)["chunks"] >= 1
+    rc, err = fh.run(out, resume=True)
+    assert rc == 0, err
+    assert fh.same(fh.snapshot(out), ref)

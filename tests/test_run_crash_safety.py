@@ -109,3 +109,27 @@ def test_disk_full_is_one_line_exit_3_and_leaves_no_complete(tmp_path):
     assert len(lines) == 1 and "results.h5" in lines[0] and "File too large" in lines[0], err
     assert _claims(out) == {"summary.json": False}
     assert sorted(p.name for p in out.iterdir()) == ["summary.json"]
+
+
+def test_write_failing_inside_hdf5_is_still_one_line_and_no_crash(tmp_path):
+    """Without the space reservation the write of results.h5 fails inside the HDF5 library
+    (before: 'Exception ignored' pages and a segfault, exit 139): exit 3, one line."""
+    import subprocess
+    import sys
+
+    code = ("import resource, signal, sys\n"
+            "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
+            "resource.setrlimit(resource.RLIMIT_FSIZE, (100000, 100000))\n"
+            "import rotorlanding.safeio as S, rotorlanding.results as R\n"
+            "S.reserve = lambda *a, **k: None\n"
+            "from rotorlanding.cli import main\n"
+            "sys.exit(main(sys.argv[1:]))\n")
+    import os
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    out = tmp_path / "run"
+    proc = subprocess.run([sys.executable, "-c", code, "run", str(SCEN), "--out", str(out), "--t-end", "0.05",
+                           "--quiet", "--no-plots"], env=env, capture_output=True, text=True)
+    assert proc.returncode == 3, proc.stderr[-2000:]
+    assert proc.stderr.strip().splitlines() == [f"rotorlanding: error: cannot write {out / 'results.h5'}: File too large"]
+    assert _claims(out) == {"summary.json": False}
