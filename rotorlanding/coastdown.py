@@ -3,16 +3,19 @@
 The run is cut into *chunks* of fixed simulated length ``[coastdown] chunk_s``. Every chunk is a
 fresh Exudyn model (:func:`rotorlanding.exudyn_model.build_exudyn` with the chunk's start state)
 solved from the chunk's start time to its end time; its samples are post-processed
-(:func:`rotorlanding.postprocess.evaluate`), decimated where the motion is smooth, appended to
-``results.h5`` and the file is closed again before the next chunk is solved. Only one chunk is
-ever held in memory, so memory does not grow with the run length.
+(:func:`rotorlanding.postprocess.evaluate`), decimated where the motion is smooth and appended
+to ``results.h5`` by a *commit* (below) every ``COMMIT_EVERY_S`` (2 s) of wall time, or every
+chunk with ``commit_every_s = 0``. One chunk at full rate is held in memory, plus the decimated
+rows of the chunks since the last commit (at most ``MAX_PENDING_CHUNKS``), so memory does not
+grow with the run length.
 
 Restart, exact by design
 ------------------------
-Each chunk starts from the state *read back from the file*: the restart record
-``/coastdown/restart`` (q, v, the time, the number of finished chunks, the number of committed
-rows) and the last committed row of every cumulative series (dissipated / input energy).
-Nothing else carries over from one chunk to the next: the model is rebuilt, so the tilt holder
+Each chunk starts from the previous chunk's end state: q, v, the time, the number of finished
+chunks and the last row of every cumulative series (dissipated / input energy), exactly the
+values the commit stores in the restart record ``/coastdown/restart`` and the rows (float64
+written and read back bit for bit); a resumed run reads them from the file. Nothing else carries
+over from one chunk to the next: the model is rebuilt, so the tilt holder
 of the axial face is recomputed from q, the gyroscopic damping C + Omega G is set from v by the
 first pre-step, the AMB forces depend on time only, and the generalized-alpha solver starts
 anew (initial accelerations from the equations of motion). Chunk boundaries are
@@ -25,12 +28,13 @@ Crash safety: the commit protocol
 ---------------------------------
 ``results.h5`` is only ever replaced whole, never opened for writing (an HDF5 file killed while
 open for writing can be unreadable or even crash the library on the next open). Beside it lives
-``.results.h5.spare``, the previous commit. One chunk is committed in this order:
+``.results.h5.spare``, the previous commit. The chunks since the last commit are committed in
+this order:
 
-1. open the spare, copy into it the rows committed since it was written (one or two chunks: a
-   committed row never changes), cut rows beyond its commit, append the new chunk's rows and its
-   ``/coastdown/chunks`` row;
-2. write the *commit record* into the same file: ``/coastdown/commits`` (per chunk: the committed
+1. open the spare, copy into it the rows committed since it was written (the previous commit's
+   chunks: a committed row never changes), cut rows beyond its commit; then per chunk append its
+   rows and its ``/coastdown/chunks`` row and
+2. write its *commit record* into the same file: ``/coastdown/commits`` (per chunk: the committed
    row count and a sha256 hash-chain link over the chunk's rows of every dataset and its chunk
    row, read back as stored) and the restart record (q, v, t_s, chunks, n_rows, and
    ``state_sha256`` over them);
@@ -39,8 +43,9 @@ open for writing can be unreadable or even crash the library on the next open). 
    spare); fsync the directory.
 
 State, time, row counts and checksums therefore change together in one atomic rename, and the
-cost per chunk is two small appends, not a copy of the file (a one-hour run has ~18000 chunks).
-A kill at any point leaves results.h5 at the previous or the new commit. The spare is treated as
+cost is two small appends per chunk, not a copy of the file (a one-hour run has ~18000 chunks).
+A kill at any point leaves results.h5 at the previous or the new commit; it loses at most the
+chunks since the last commit (~2 s of wall time) and the one being solved. The spare is treated as
 garbage by every new process (deleted, then copied afresh from results.h5), so a half-written
 file is never opened. Where hard links are impossible the next chunk copies the file instead.
 The end of the run (:func:`finish`) writes a compacted copy with the summary and renames it.
@@ -48,7 +53,9 @@ Readers may keep results.h5 open meanwhile: HDF5 locks files it has open, so if 
 commit (the next spare) is still held by a reader, the run takes a fresh copy instead of writing
 under it. Before each commit, space for it is reserved (``posix_fallocate``: about 1 MB plus
 twice the chunk), so a full disk is found outside the HDF5 library (:mod:`rotorlanding.safeio`).
-Cost: two small appends per chunk instead of one, ~0.05 s per chunk on the test machine; the
+Cost: batching shares a commit's fixed part (sync, flush, fsync, rename; ~0.1 s) among the
+chunks of 2 s: on the rig coast-down (0.2 s chunks) the time per chunk outside the solver fell
+from ~0.10 s (one append, file opened and closed per chunk, before issue 16) to ~0.07 s. The
 spare doubles the disk use while the run goes (it is deleted at the end).
 
 ``--resume`` first verifies results.h5 (:func:`verify_checkpoint`): every chain link against the
@@ -699,11 +706,13 @@ def _classify_whirl(spec, t, q, v, chunk_s):
 
 
 def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = False, overwrite: bool = False,
-                  progress=True, plots: bool = True, on_chunk=None) -> dict:
+                  progress=True, plots: bool = True, on_chunk=None, commit_every_s: float | None = None) -> dict:
     """Run (or resume) the chunked coast-down; returns the summary (also in summary.json).
 
-    ``on_chunk(info)`` is called after each chunk is committed to the file (a test hook; raising
-    there simulates an interruption). ``progress``: True/False or a stream."""
+    ``on_chunk(info)`` is called for each chunk once it is committed to the file (a test hook;
+    raising there simulates an interruption). ``progress``: True/False or a stream.
+    ``commit_every_s``: wall seconds between commits (None: ROTORLANDING_COMMIT_EVERY_S or
+    COMMIT_EVERY_S; 0: every chunk)."""
     import h5py
 
     from .exudyn_model import SolverSettings
@@ -743,7 +752,7 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
                 stream.write(f"resuming {path} from t = {read_restart(path)['t_s']:g} s\n")
         # an earlier summary.json (perhaps `complete: true`) must not outlive the start of this run
         atomic_write_text(out / "summary.json", json.dumps(RUNNING_SUMMARY | {"scenario": scenario.name}, indent=2))
-        summary = _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots)
+        summary = _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, commit_every_s)
         max_buffer = summary.pop("_max_buffer")
     except (OSError, WriteError) as exc:
         err = exc if isinstance(exc, WriteError) else WriteError(getattr(exc, "filename", None) or path, exc)
@@ -773,7 +782,50 @@ RUNNING_SUMMARY = {"kind": "coastdown", "complete": False, "status": "running",
                               "was interrupted (resume with --resume)"}
 
 
-def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots) -> dict:
+COMMIT_EVERY_S = 2.0  # s of wall time between commits (a kill repeats at most this much work)
+MAX_PENDING_CHUNKS = 64  # ... or this many chunks (their decimated rows wait in memory)
+
+
+def _commit_every_s(value: float | None) -> float:
+    """The commit interval: ``value``, else ROTORLANDING_COMMIT_EVERY_S, else COMMIT_EVERY_S (0:
+    every chunk is committed at once; the results are bitwise the same for any interval)."""
+    if value is None:
+        text = os.environ.get("ROTORLANDING_COMMIT_EVERY_S", "")
+        try:
+            value = float(text) if text else COMMIT_EVERY_S
+        except ValueError:
+            raise InputError("ROTORLANDING_COMMIT_EVERY_S", text, "must be a number of seconds >= 0") from None
+    if not value >= 0:
+        raise InputError("commit_every_s", value, "must be >= 0")
+    return float(value)
+
+
+def _chunk_writer(k, rows, row, rec, t_stop, t_reached, q_end, v_end, t1, fail_message):
+    """A function writing chunk ``k`` (its rows, chunk row and commit record; or, for a failed
+    solve, its rows beyond the commit and the stop) into an open Store. All values are fixed
+    here, so writing is the same whenever the chunk is committed."""
+    def write(store):
+        store.append(*rows, chunk=k)
+        fault("appended", k)  # rows appended, commit record not yet: the kill of issue 16
+        store.h5.attrs["t_reached_s"] = t_reached
+        r = store.r
+        if row is None:
+            # the partial chunk stays for inspection (beyond the committed rows); the restart
+            # record stays at the last finished chunk (resuming would repeat the same failure)
+            store.h5.attrs["message"] = fail_message
+            r.attrs["stop_reason"] = "solver failed"
+        else:
+            for name, val in row.items():
+                _append(store.ds(f"coastdown/chunks/{name}"), [val])
+            if t_stop is not None:
+                r.attrs["t_stop_s"] = t_stop
+            fault("chunk-row", k)
+            store.commit(k, q_end, v_end, t1, **rec)  # restart state, row counts, hash-chain link
+        fault("recorded", k)  # the commit record written, the file not yet closed
+    return write
+
+
+def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, commit_every_s=None) -> dict:
     """The chunk loop (each chunk committed through ``ckpt``), then :func:`finish`."""
     from .exudyn_model import build_exudyn, collect, solve
 
@@ -783,15 +835,20 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots) -
     wall_start = time.perf_counter()
     t_first = None
     last_print = -1e9
-    # the files are open only while a chunk is read or committed: a kill during a solve (nearly
+    # the files are open only while a commit is read or written: a kill during a solve (nearly
     # all of the wall time) finds nothing open; other programs can read results.h5 meanwhile.
-    # Wall time of a chunk runs from reading its restart record to closing the file after its
-    # commit; the publication (fsync, rename) follows, so it is carried into the next record
+    # Chunks are committed in batches (every commit_every_s of wall time; see the module
+    # docstring): a commit's fixed cost (sync of the spare, flush, fsync, rename) is shared.
+    # Wall time of a chunk runs from its start to its record; the time after (the commit of a
+    # batch included) is carried into the next chunk's record
     carry_s = 0.0
+    commit_every = _commit_every_s(commit_every_s)
+    pending, pending_bytes, infos = [], 0, []
+    last_commit = time.perf_counter()
+    with Store(path, "r") as store:
+        rs = store.restart()  # the first chunk starts from what is committed in the file
     while True:
         wall_chunk0 = time.perf_counter()
-        with Store(path, "r") as store:
-            rs = store.restart()  # every chunk starts from what is committed in the file
         k = int(rs["chunks"])
         t0 = float(rs["t_s"])
         if rs["stop_reason"]:
@@ -825,53 +882,60 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots) -
             series[name] = series[name] + off
         speed_now = abs(v[-1, spec.i_theta]) * 30 / math.pi
         new = slice(1 if k > 0 else 0, None)  # a chunk's first sample is the previous chunk's last
-        state = {}
+        rows = (t[new], q[new], v[new], {name: arr[new] for name, arr in series.items()})
+        if ok:
+            row = {"t_start_s": t0, "t_end_s": t1, "rotor_speed_rpm": speed_now, "wall_s": stats["wall_s"],
+                   "steps": stats["steps"], "newton_iterations": stats["newton_iterations"],
+                   "jacobians": stats["jacobians"], "samples_kept": len(t) - (1 if k > 0 else 0),
+                   "samples_fast": int(fast.sum()), "whirl_direction": whirl[0], "whirl_frequency_hz": whirl[1]}
+            for b in spec.bearing_names:
+                row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(
+                    series[b + "_contact_force_y_n"] + series[b + "_rub_force_y_n"],
+                    series[b + "_contact_force_z_n"] + series[b + "_rub_force_z_n"])))
+            reason, t_stop = "", None
+            if speed_now <= stop_rpm:
+                reason = f"rotor speed {speed_now:.1f} rpm <= stop_speed_rpm {stop_rpm:g}"
+                rpm = np.abs(series["rotor_speed_rpm"])
+                i = int(np.argmax(rpm <= stop_rpm))  # first sample at or below the stop speed
+                t_stop = float(t[i] if i == 0 else np.interp(stop_rpm, [rpm[i], rpm[i - 1]], [t[i], t[i - 1]]))
+            elif t1 >= t_end - 0.5 * settings.step:
+                reason = f"t_end ({t_end:g} s) reached at {speed_now:.4g} rpm"
+            rec = dict(wall_s=float(rs["wall_s"]) + carry_s + (time.perf_counter() - wall_chunk0),
+                       solver_wall_s=float(rs["solver_wall_s"]) + stats["wall_s"],
+                       steps=int(rs["steps"]) + stats["steps"],
+                       newton_iterations=int(rs["newton_iterations"]) + stats["newton_iterations"],
+                       jacobians=int(rs["jacobians"]) + stats["jacobians"], stop_reason=reason,
+                       peak_rss_mb=max(float(rs.get("peak_rss_mb", 0.0)), _maxrss_mb()))
+        else:
+            row, reason, t_stop, rec = None, "solver failed", None, None
+        pending.append(_chunk_writer(k, rows, row, rec, t_stop, float(t[-1]), q[-1], v[-1], t1,
+                                     f"solver stopped at t = {t[-1]:.6g} s: {msg}"))
+        pending_bytes += 8 * (len(t) * (1 + 2 * spec.n + len(series)) + 64)
+        # the next chunk starts from this one's end state: bitwise the values stored (float64
+        # written and read back unchanged), so it is the state a resume would read from the file
+        if ok:
+            rs = dict(rs, q=q[-1].copy(), v=v[-1].copy(), t_s=t1, chunks=k + 1, **rec,
+                      offsets={name: float(series[name][-1]) for name in rs["offsets"]})
+        else:
+            rs = dict(rs, stop_reason=reason)
+        done = bool(rs["stop_reason"])
+        t_record = time.perf_counter()
+        infos.append({"chunk": k, "t_s": float(t[-1]), "rotor_speed_rpm": speed_now, "ok": ok,
+                      "buffer_samples": len(keep), "max_buffer_samples": max_buffer})
+        if done or len(pending) >= MAX_PENDING_CHUNKS or t_record - last_commit >= commit_every:
+            batch = pending
 
-        def fill(store):
-            store.append(t[new], q[new], v[new], {name: arr[new] for name, arr in series.items()}, chunk=k)
-            fault("appended", k)  # rows appended, restart record not yet: the kill of issue 16
-            store.h5.attrs["t_reached_s"] = float(t[-1])
-            r = store.r
-            if not ok:
-                # the partial chunk stays for inspection (beyond the committed rows); the restart
-                # record stays at the last finished chunk (resuming would repeat the same failure)
-                store.h5.attrs["message"] = f"solver stopped at t = {t[-1]:.6g} s: {msg}"
-                r.attrs["stop_reason"] = "solver failed"
-            else:
-                row = {"t_start_s": t0, "t_end_s": t1, "rotor_speed_rpm": speed_now, "wall_s": stats["wall_s"],
-                       "steps": stats["steps"], "newton_iterations": stats["newton_iterations"],
-                       "jacobians": stats["jacobians"], "samples_kept": len(t) - (1 if k > 0 else 0),
-                       "samples_fast": int(fast.sum()), "whirl_direction": whirl[0], "whirl_frequency_hz": whirl[1]}
-                for b in spec.bearing_names:
-                    row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(
-                        series[b + "_contact_force_y_n"] + series[b + "_rub_force_y_n"],
-                        series[b + "_contact_force_z_n"] + series[b + "_rub_force_z_n"])))
-                for name, val in row.items():
-                    _append(store.ds(f"coastdown/chunks/{name}"), [val])
-                reason = ""
-                if speed_now <= stop_rpm:
-                    reason = f"rotor speed {speed_now:.1f} rpm <= stop_speed_rpm {stop_rpm:g}"
-                    rpm = np.abs(series["rotor_speed_rpm"])
-                    i = int(np.argmax(rpm <= stop_rpm))  # first sample at or below the stop speed
-                    r.attrs["t_stop_s"] = float(t[i] if i == 0 else np.interp(stop_rpm, [rpm[i], rpm[i - 1]],
-                                                                               [t[i], t[i - 1]]))
-                elif t1 >= t_end - 0.5 * settings.step:
-                    reason = f"t_end ({t_end:g} s) reached at {speed_now:.4g} rpm"
-                fault("chunk-row", k)
-                # the commit record: restart state, row counts, hash-chain link
-                store.commit(k, q[-1], v[-1], t1,
-                             wall_s=float(r.attrs["wall_s"]) + carry_s + (time.perf_counter() - wall_chunk0),
-                             solver_wall_s=float(r.attrs["solver_wall_s"]) + stats["wall_s"],
-                             steps=int(r.attrs["steps"]) + stats["steps"],
-                             newton_iterations=int(r.attrs["newton_iterations"]) + stats["newton_iterations"],
-                             jacobians=int(r.attrs["jacobians"]) + stats["jacobians"], stop_reason=reason,
-                             peak_rss_mb=max(float(r.attrs.get("peak_rss_mb", 0.0)), _maxrss_mb()))
-            fault("recorded", k)  # the commit record written, the file not yet closed
-            state["done"] = bool(r.attrs["stop_reason"])
-            state["t_commit"] = time.perf_counter()
+            def fill(store, batch=batch):
+                for write in batch:
+                    write(store)
 
-        ckpt.write_chunk(fill, k, new_bytes=8 * (len(t) * (1 + 2 * spec.n + len(series)) + 64))
-        done, t_commit = state["done"], state["t_commit"]
+            ckpt.write_chunk(fill, k, new_bytes=pending_bytes)
+            pending, pending_bytes = [], 0
+            last_commit = time.perf_counter()
+            for info in infos:  # after the commit: a hook that raises finds these chunks in the file
+                if on_chunk is not None:
+                    on_chunk(info)
+            infos = []
         now = time.perf_counter()
         if stream and (now - last_print > 2.0 or done):
             last_print = now
@@ -880,10 +944,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots) -
                          f"({w / max(t[-1] - t_first, 1e-9):.2f} s wall per simulated s; "
                          f"peak {_maxrss_mb():.0f} MB)\n")
             stream.flush()
-        if on_chunk is not None:
-            on_chunk({"chunk": k, "t_s": float(t[-1]), "rotor_speed_rpm": speed_now, "ok": ok,
-                      "buffer_samples": len(keep), "max_buffer_samples": max_buffer})
-        carry_s = time.perf_counter() - t_commit
+        carry_s = time.perf_counter() - t_record
     summary = finish(path, spec, scenario, cd, plots=plots)
     summary["_max_buffer"] = max_buffer
     return summary

@@ -28,6 +28,8 @@ SCEN = ROOT / "scenarios" / "coastdown_7000rpm.toml"
 # 4 chunks of 0.01 s right after the drop (impacts, decimation at work): ~1 s of solving
 TINY = ["operating.t_end=0.04", "coastdown.chunk_s=0.01", "coastdown.decimate_every=10"]
 
+RANDOM_COMMIT_EVERY_S = 0.3  # s: runs killed at random commit every ~2 chunks (batches)
+
 # every named point of the write path; the number is the chunk (0-based) whose commit is killed
 # (None: the first time the point is passed)
 POINTS = [
@@ -48,11 +50,15 @@ POINTS = [
 ]
 
 
-def env(fault: str | None = None) -> dict:
+def env(fault: str | None = None, commit_every_s: float | None = None) -> dict:
+    """The environment of a CLI run: this tree on the path, a fault point, a commit interval."""
     e = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    e.pop("ROTORLANDING_FAULT", None)
+    for key in ("ROTORLANDING_FAULT", "ROTORLANDING_COMMIT_EVERY_S"):
+        e.pop(key, None)
     if fault:
         e["ROTORLANDING_FAULT"] = fault
+    if commit_every_s is not None:
+        e["ROTORLANDING_COMMIT_EVERY_S"] = str(commit_every_s)
     return e
 
 
@@ -61,9 +67,16 @@ def args(out: Path, overrides=TINY, resume=False) -> list[str]:
              "--no-plots"] + [a for kv in overrides for a in ("--set", kv)] + (["--resume"] if resume else []))
 
 
-def run(out: Path, overrides=TINY, *, fault=None, kill_after=None, resume=False) -> tuple[int, str]:
-    """(exit code, stderr); ``kill_after`` seconds: SIGKILL from outside if still running."""
-    proc = subprocess.Popen(args(out, overrides, resume), env=env(fault), stdout=subprocess.DEVNULL,
+def run(out: Path, overrides=TINY, *, fault=None, kill_after=None, resume=False,
+        commit_every_s=None) -> tuple[int, str]:
+    """(exit code, stderr); ``kill_after`` seconds: SIGKILL from outside if still running.
+    A named fault point commits every chunk (``commit_every_s`` 0), so that the point is passed
+    at the chunk it names; otherwise the default interval batches chunks."""
+    if commit_every_s is None:
+        # a named point: a commit per chunk, so the point is passed at the chunk it names; a
+        # random kill: batches of a few chunks (the tiny run fits in one default interval)
+        commit_every_s = 0 if fault else RANDOM_COMMIT_EVERY_S
+    proc = subprocess.Popen(args(out, overrides, resume), env=env(fault, commit_every_s), stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True)
     if kill_after is not None:
         try:
@@ -86,7 +99,8 @@ def run_fork(out: Path, overrides=TINY, *, fault=None, kill_after=None) -> tuple
             if fault:
                 os.environ["ROTORLANDING_FAULT"] = fault
             sc, cd = load_coastdown(SCEN, overrides)
-            run_coastdown(sc, cd, out, progress=False, plots=False)
+            run_coastdown(sc, cd, out, progress=False, plots=False,
+                          commit_every_s=0 if fault else RANDOM_COMMIT_EVERY_S)
             code = 0
         finally:
             os._exit(code)

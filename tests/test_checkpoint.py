@@ -24,7 +24,7 @@ def ref(tmp_path_factory):
     """The uninterrupted tiny coast-down, run in this process (4 chunks of 0.01 s)."""
     out = tmp_path_factory.mktemp("ref")
     sc, cd = load_coastdown(fh.SCEN, fh.TINY)
-    run_coastdown(sc, cd, out, progress=False, plots=False)
+    run_coastdown(sc, cd, out, progress=False, plots=False, commit_every_s=0)  # a commit per chunk
     return fh.snapshot(out)
 
 
@@ -40,7 +40,7 @@ def _interrupted(out, after: int):
             raise Interrupted
 
     with pytest.raises(Interrupted):
-        _run(out, on_chunk=stop)
+        _run(out, on_chunk=stop, commit_every_s=0)
 
 
 def test_kills_at_every_write_point_and_at_random_resume_bit_exact(tmp_path):
@@ -52,6 +52,17 @@ def test_kills_at_every_write_point_and_at_random_resume_bit_exact(tmp_path):
     bad = [r for r in res["trials"] if r["outcome"] != "exact"]
     assert not bad, bad
     assert res["tally"]["exact"] == len(fh.POINTS) + 3
+
+
+def test_batched_commits_store_the_same_as_one_commit_per_chunk(tmp_path, ref):
+    """Chunks committed together (here all four in one commit) give the same file: a chunk starts
+    from the previous one's end state in memory, bitwise what is stored."""
+    commits = []
+    _run(tmp_path, commit_every_s=1e9, on_chunk=lambda info: commits.append(read_restart(tmp_path / "results.h5")["chunks"]))
+    assert commits == [4, 4, 4, 4]  # one commit: the hook saw all four chunks in the file at once
+    assert fh.same(fh.snapshot(tmp_path), ref)
+    spec = build_spec(load_coastdown(fh.SCEN, fh.TINY)[0])
+    assert verify_checkpoint(tmp_path / "results.h5", spec) == {"chunks": 4, "repaired": False}
 
 
 def test_harness_detects_a_differing_result(ref):
@@ -124,7 +135,9 @@ def test_disk_full_stops_with_one_line_keeps_the_checkpoint_and_resumes_exactly(
     """A file-size limit (portable stand-in for a full disk): exit 3, one line naming results.h5,
     no traceback or crash, the last commit intact; resumed without the limit: bit for bit."""
     out = tmp_path / "cd"
-    proc = subprocess.run(fh.args(out), env=fh.env(), capture_output=True, text=True, preexec_fn=_limited(1_250_000))
+    # a commit per chunk, so that some chunks are committed before the limit is met
+    proc = subprocess.run(fh.args(out), env=fh.env(commit_every_s=0), capture_output=True, text=True,
+                          preexec_fn=_limited(1_250_000))
     assert proc.returncode == 3, proc.stderr[-2000:]
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and "results.h5" in lines[0] and "File too large" in lines[0], proc.stderr
@@ -197,7 +210,7 @@ def test_write_failing_inside_hdf5_is_still_one_line_and_no_crash(tmp_path, ref)
 
     out = tmp_path / "cd"
     cmd = [sys.executable, "-c", NO_RESERVE.format(n=380_000)] + fh.args(out)[3:]
-    proc = subprocess.run(cmd, env=fh.env(), capture_output=True, text=True)
+    proc = subprocess.run(cmd, env=fh.env(commit_every_s=0), capture_output=True, text=True)
     assert proc.returncode == 3, proc.stderr[-2000:]
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("rotorlanding: error: cannot write") and "results.h5" in lines[0]
