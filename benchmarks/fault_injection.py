@@ -4,7 +4,7 @@ Every run is ``python -m rotorlanding coastdown`` in its own process (tiny scena
 0.01 s after the drop). First the uninterrupted reference; then one run killed at each named
 point of the write path (``ROTORLANDING_FAULT``, see rotorlanding/safeio.py and
 tests/fault_harness.py: POINTS) and N runs killed with SIGKILL from outside at random moments
-(uniform over 0.25-0.95 x the reference's process wall time, interpreter start included). Each is
+(uniform over 0.2-0.85 x the reference's process wall time, interpreter start included). Each is
 followed by ``--resume`` and compared with the reference bit for bit (every stored row, chunk
 column but the wall time, the restart state). Outcomes: exact, refused (one-line error, exit 2),
 wrong (a differing result or a false `complete`), error (anything else). Exit code 1 if any run

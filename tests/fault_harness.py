@@ -215,7 +215,7 @@ def campaign(base: Path, n_random: int, points=POINTS, seed: int = 16, stream=No
     plan = [(f"{p}:{k}" if k is not None else p, None) for p, k in points]
     # random moments over the run's whole wall time (interpreter start and imports included: the
     # first ~40 % of it kill before anything is written, which must resume as well)
-    plan += [(None, rng.uniform(0.25 * wall, 0.95 * wall)) for _ in range(n_random)]
+    plan += [(None, rng.uniform(0.2 * wall, 0.85 * wall)) for _ in range(n_random)]
 
     def one(item):
         i, (fault, delay) = item
