@@ -10,10 +10,11 @@ column but the wall time, the restart state). Outcomes: exact, refused (one-line
 wrong (a differing result or a false `complete`), error (anything else). Exit code 1 if any run
 was wrong or an error.
 
-Measured on the 2-core machine (2026-11-23, seed 2016, --random 60 --workers 1, 261 s): 74 trials,
-72 processes killed (every named point; 58 of the 60 random kills, 2 runs had ended): 74 resumed
-bit-exact, 0 refused, 0 wrong, 0 error. The random kills left: nothing yet 12, results.h5 with 0
-chunks 22, with 1-4 committed chunks 24 (a spare beside it in 19: mid-commit or between chunks).
+Measured on the 2-core machine (2026-11-23, seed 2027, --random 80 --workers 1, 303 s; named
+points commit every chunk, random kills batch commits every 0.3 s): 94 trials, 94 processes
+killed (the 14 named points and all 80 random kills): 94 resumed bit-exact, 0 refused, 0 wrong,
+0 error. The random kills left: nothing yet 30, results.h5 with 0 committed chunks 28, with 1-4
+committed chunks 22 (11 of them during the end of the run: repack, summary).
 
 usage: python benchmarks/fault_injection.py [--random 50] [--workers 2] [--seed 16] [--json out.json]
 """
