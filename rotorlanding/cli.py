@@ -1,7 +1,9 @@
 """Command line: ``rotorlanding run|coastdown|modes|reduce ...``.
 
 Bad input never shows a traceback: an :class:`InputError` prints one line naming the file, field,
-value and what is allowed, and the exit code is 2.
+value and what is allowed, and the exit code is 2. A result file that cannot be written (disk
+full, file too large, I/O error: :class:`rotorlanding.safeio.WriteError`) prints one line naming
+the file and the error, exit code 3. A run that stops incomplete exits 1.
 """
 
 from __future__ import annotations
@@ -15,8 +17,10 @@ import numpy as np
 
 from . import __version__
 from .errors import InputError
+from .safeio import WriteError, hard_exit, poisoned
 
 EXIT_INPUT = 2
+EXIT_IO = 3  # a result could not be written (disk full, I/O error); the input was fine
 
 
 def _speeds(text: str) -> list[float]:
@@ -448,6 +452,11 @@ def main(argv=None) -> int:
     except InputError as err:
         print(f"rotorlanding: error: {err}", file=sys.stderr)
         return EXIT_INPUT
+    except WriteError as err:
+        print(f"rotorlanding: error: {err}", file=sys.stderr)
+        if poisoned():  # an HDF5 file whose write failed: the library's shutdown would crash
+            hard_exit(EXIT_IO)
+        return EXIT_IO
 
 
 if __name__ == "__main__":  # pragma: no cover

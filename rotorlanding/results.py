@@ -21,11 +21,13 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
+import os
 from pathlib import Path
 
 import numpy as np
 
 from . import __version__
+from .safeio import WriteError, fault, fsync_dir, fsync_path, h5_guard, new_h5, tmp_name, unlink_quietly
 
 SUFFIX_UNITS = {"_m": "m", "_n": "N", "_nm": "N m", "_j": "J", "_w": "W", "_rpm": "rpm", "_m_s": "m/s", "_s": "s"}
 
@@ -51,38 +53,65 @@ def coordinate_units(names: list[str]) -> list[str]:
 
 def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[str], t, q, v, series: dict,
                   summary: dict, complete: bool, t_reached: float, message: str = "") -> Path:
-    import exudyn
-    import h5py
-
+    """Write results.h5 atomically: a temporary name beside it, fsync, rename."""
     path = Path(path)
-    tmp = path.with_suffix(".h5.part")
-    with h5py.File(tmp, "w") as h5:
-        h5.attrs["package"] = "rotorlanding"
-        h5.attrs["package_version"] = __version__
-        h5.attrs["exudyn_version"] = exudyn.__version__
-        h5.attrs["scenario_name"] = scenario_name
-        h5.attrs["complete"] = bool(complete)
-        h5.attrs["t_reached_s"] = float(t_reached)
-        h5.attrs["message"] = message
-        h5.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-        h5["scenario_json"] = json.dumps(scenario_raw)
-        h5["time_s"] = np.asarray(t)
-        h5["time_s"].attrs["unit"] = "s"
-        g = h5.create_group("states")
-        for key, arr, vel in (("q", q, False), ("v", v, True)):
-            ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4)
-            units = coordinate_units(names)
-            if vel:
-                units = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in units]
-            ds.attrs["names"] = json.dumps(names)
-            ds.attrs["units"] = json.dumps(units)
-        s = h5.create_group("series")
-        for name, arr in series.items():
-            ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4)
-            ds.attrs["unit"] = unit_of(name)
-        h5["summary_json"] = json.dumps(summary)
-    tmp.replace(path)
+    tmp = tmp_name(path, "part")
+    arrays = [np.asarray(t), np.asarray(q), np.asarray(v)] + [np.asarray(a) for a in series.values()]
+    # disk reserved up front (raw size + 1 %: gzip never grows data by more) so a full disk fails
+    # before HDF5 writes (see rotorlanding.safeio)
+    need = int(1.01 * sum(a.nbytes for a in arrays)) + (1 << 20)
+    try:
+        h5 = new_h5(tmp, need)
+        with h5_guard(h5, tmp):
+            # the datasets stay referenced until the flush: one freed earlier flushes its data
+            # on its own, where a failed write cannot be caught
+            held = _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached,
+                         message)
+            h5.flush()
+            del held
+        fault("results-written")
+        fsync_path(tmp)
+        os.replace(tmp, path)
+    except (OSError, WriteError) as exc:
+        unlink_quietly(tmp)
+        raise WriteError(path, exc.exc if isinstance(exc, WriteError) else exc) from None  # name the file a user knows
+    fsync_dir(path.parent)
     return path
+
+
+def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached, message) -> list:
+    """Write the layout into the open file; returns the datasets created (see write_results)."""
+    import exudyn
+
+    held = []
+
+    h5.attrs["package"] = "rotorlanding"
+    h5.attrs["package_version"] = __version__
+    h5.attrs["exudyn_version"] = exudyn.__version__
+    h5.attrs["scenario_name"] = scenario_name
+    h5.attrs["complete"] = bool(complete)
+    h5.attrs["t_reached_s"] = float(t_reached)
+    h5.attrs["message"] = message
+    h5.attrs["created_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    held.append(h5.create_dataset("scenario_json", data=json.dumps(scenario_raw)))
+    held.append(h5.create_dataset("time_s", data=np.asarray(t)))
+    held[-1].attrs["unit"] = "s"
+    g = h5.create_group("states")
+    for key, arr, vel in (("q", q, False), ("v", v, True)):
+        ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4)
+        units = coordinate_units(names)
+        if vel:
+            units = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in units]
+        ds.attrs["names"] = json.dumps(names)
+        ds.attrs["units"] = json.dumps(units)
+        held.append(ds)
+    s = h5.create_group("series")
+    for name, arr in series.items():
+        ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4)
+        ds.attrs["unit"] = unit_of(name)
+        held.append(ds)
+    held.append(h5.create_dataset("summary_json", data=json.dumps(summary)))
+    return held + [g, s]
 
 
 def read_results(path) -> dict:

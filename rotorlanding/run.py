@@ -4,6 +4,14 @@ A run that fails part-way (solver divergence) keeps what it computed: results.h5
 summary.json hold the states up to the time reached, the summary says ``"complete": false``
 with that time and the solver's message, and :func:`run_scenario` reports it so the CLI exits
 non-zero.
+
+Crash safety: the output folder is checked before the solve (an existing file, /dev/null or an
+unwritable folder is bad input). Before the solve starts, summary.json is replaced (atomically)
+by one saying ``"complete": false, "status": "running"`` and an earlier results.h5 is removed, so
+a run killed at any moment never leaves a ``complete: true`` of an earlier run in its folder.
+results.h5 and summary.json are written under temporary names and renamed when complete; a
+write that fails (disk full, I/O error) raises :class:`rotorlanding.safeio.WriteError` (one line,
+exit 3).
 """
 
 from __future__ import annotations
@@ -19,6 +27,7 @@ from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
 from .postprocess import evaluate, summarize
 from .results import write_results
+from .safeio import WriteError, atomic_write_text, check_out_dir, fault, unlink_quietly
 from .scenario import Scenario
 from .whirl import landing_whirl
 
@@ -74,13 +83,30 @@ def simulate(scenario: Scenario, *, progress: bool | None = None):
 
 def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True) -> dict:
     """Simulate and write results.h5, summary.json and the figures into ``out_dir``."""
-    out = Path(out_dir)
+    out = check_out_dir(Path(out_dir))  # before the solve: a bad --out is found at once
+    try:
+        atomic_write_text(out / "summary.json", json.dumps(RUNNING_SUMMARY | {"scenario": scenario.name}, indent=2))
+        unlink_quietly(out / "results.h5")  # an earlier run's results must not outlive this run's start
+    except OSError as exc:
+        raise WriteError(out / "summary.json", exc) from None
+    fault("run-started")
     spec, t, q, v, stats = simulate(scenario, progress=progress)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        return _write(scenario, out, spec, t, q, v, stats, plots)
+    except OSError as exc:
+        raise WriteError(getattr(exc, "filename", None) or out, exc) from None
+
+
+RUNNING_SUMMARY = {"complete": False, "status": "running",
+                   "message": "written when a run starts and replaced when it ends: if no run is active, it was "
+                              "interrupted"}
+
+
+def _write(scenario, out, spec, t, q, v, stats, plots) -> dict:
     if len(t) < 2:
         summary = {"scenario": scenario.name, "complete": False, "t_reached_s": 0.0, "message": stats["message"],
                    "performance": {k: stats[k] for k in ("simulated_s", "wall_s", "steps")}}
-        (out / "summary.json").write_text(json.dumps(summary, indent=2))
+        atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
         return summary
     series = evaluate(spec, t, q, v)
     summary = summarize(spec, t, series)
@@ -102,12 +128,13 @@ def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, p
     write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
                   t=t, q=q, v=v, series=series, summary=summary, complete=stats["complete"],
                   t_reached=float(t[-1]), message=summary.get("message", ""))
-    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    # the summary is final only once results.h5 is: a kill in between leaves `running`
+    atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
     if plots:
         plot_files = __import__("rotorlanding.plots", fromlist=["plot_all"]).plot_all(
             out, t, series, summary, {b.name: b.params.clearance for b in spec.bearings}, scenario.amb.t_drop)
         summary["figures"] = [p.name for p in plot_files]
-        (out / "summary.json").write_text(json.dumps(summary, indent=2))
+        atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
     return summary
 
 
