@@ -191,14 +191,20 @@ def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, 
 
 
 def _stored_input(path: Path) -> dict:
+    """The scenario (and [coastdown] table) stored in a results.h5, read behind the results guard
+    (a damaged, foreign or text file is one line, exit 2)."""
     import h5py
 
-    if not path.is_file():
-        raise InputError("file", str(path), "file not found")
-    with h5py.File(path, "r") as h5:
-        data = json.loads(h5["scenario_json"][()])
-        if "coastdown_json" in h5:
-            data["coastdown"] = json.loads(h5["coastdown_json"][()])
+    from .readers import read_results_guarded
+
+    data = read_results_guarded(path, ("scenario",), field="file")["scenario"]
+    try:
+        with h5py.File(path, "r") as h5:
+            if "coastdown_json" in h5:
+                data["coastdown"] = json.loads(h5["coastdown_json"][()])
+    except (OSError, RuntimeError, ValueError, KeyError) as exc:
+        raise InputError("coastdown_json", "unreadable", f"damaged results file ({str(exc)[:120]})",
+                         file=str(path)) from None
     return data
 
 

@@ -26,6 +26,7 @@ from pathlib import Path
 
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
+from .safeio import atomic_write_text
 
 
 def project_root() -> Path:
@@ -821,18 +822,12 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
                                       for k, v in summaries.items()}}}
     result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig))
     result["figures"] = plot_validation(result, out)
-    _write_atomic(out / "validation.json", json.dumps(result, indent=2, default=float))
+    atomic_write_text(out / "validation.json", json.dumps(result, indent=2, default=float))
     md = report_markdown(result)
-    _write_atomic(out / "validation.md", md)
+    atomic_write_text(out / "validation.md", md)
     if publish is not None:
         name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
-        _write_atomic(Path(publish) / name, md)
+        atomic_write_text(Path(publish) / name, md)
     return result
 
-
-def _write_atomic(path: Path, text: str) -> None:
-    """A report is replaced whole or not at all (temporary name in the same folder, then rename)."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text)
-    os.replace(tmp, path)
 
