@@ -35,6 +35,7 @@ from user_forces.axial import axial_force as _axial_force_py
 from user_forces import axial_rub as _axial_rub_mod
 from user_forces.axial_rub import axial_rub as _axial_rub_py
 from user_forces.ball_bearing import ball_force as _ball_force_py
+from user_forces.ball_bearing import harris_palmgren_with_derivatives as _hp_law_py
 from user_forces.ball_bearing import worn_drag_development as _worn_dev_py
 from user_forces.ball_bearing import worn_drag_torque as _worn_drag_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
@@ -51,6 +52,7 @@ _axial_rub = _njit(_axial_rub_py)
 _worn_drag = _njit(_worn_drag_py)
 _worn_dev = _njit(_worn_dev_py)
 _ball_force = _njit(_ball_force_py)
+_hp_law = _njit(_hp_law_py)
 _ribbon_force = _njit(_ribbon_force_py)
 _outer_race_friction = _njit(_outer_race_friction_py)
 
@@ -86,31 +88,8 @@ def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
 
 @_njit
 def _hp(omi, fr, fa, P):
-    """Harris-Palmgren drag torque (= harris_palmgren_fast) and its derivatives (dfr, dfa, domi)."""
-    fr = abs(fr)
-    fa = abs(fa)
-    xs = P[P_XS]
-    ys = P[P_YS]
-    f_s = xs * fr + ys * fa
-    dsr, dsa = xs, ys
-    if f_s < fr:
-        f_s, dsr, dsa = fr, 1.0, 0.0
-    if f_s <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0
-    f_beta = P[P_C4COT] * fa + P[P_C5] * fr
-    dbr, dba = P[P_C5], P[P_C4COT]
-    if f_beta < fr:
-        f_beta, dbr, dba = fr, 1.0, 0.0
-    m2 = omi * omi + P[P_WREG2]
-    m = math.sqrt(m2)
-    g = omi / m
-    dg = P[P_WREG2] / (m2 * m)
-    A = -P[P_ZDM] * (f_s * P[P_INVCS]) ** P[P_YHP]
-    dA = A * P[P_YHP] / f_s
-    T = A * f_beta * g
-    dT_fr = (dA * dsr * f_beta + A * dbr) * g
-    dT_fa = (dA * dsa * f_beta + A * dba) * g
-    return T, dT_fr, dT_fa, A * f_beta * dg
+    """Harris-Palmgren drag torque and its derivatives (d|fr|, d|fa|, domi): the user_forces law."""
+    return _hp_law(omi, fr, fa, (P[P_XS], P[P_YS], P[P_INVCS], P[P_ZDM], P[P_YHP], P[P_C4COT], P[P_C5], P[P_WREG2]))
 
 
 @_njit

@@ -6,7 +6,8 @@ import math
 
 import pytest
 
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_development, worn_drag_torque
+from user_forces.ball_bearing import (ball_force, harris_palmgren_constants, harris_palmgren_torque,
+                                      worn_drag_development, worn_drag_torque)
 
 HP = dict(contact_angle_deg=40.0, C_s=45000.0, d_m=0.085, z_hp=0.001, y_hp=0.33,
           omega_reg=0.1)
@@ -113,3 +114,27 @@ def test_developing_worn_drag_is_the_developed_share_of_the_full_torque():
             assert worn_drag_torque(w, 2.5, 0.1, phi, 60.0) == pytest.approx(g * worn_drag_torque(w, 2.5, 0.1), rel=1e-14)
             assert worn_drag_torque(w, 2.5, 0.1, phi, 60.0) * w <= 0.0
         assert worn_drag_torque(w, 2.5, 0.1, 50.0, 0.0) == worn_drag_torque(w, 2.5, 0.1)
+
+
+@pytest.mark.parametrize("omega, fr, fa", [
+    (50.0, 800.0, 0.0),      # pure radial: both catalogue floors (F_s = F_beta = F_r) active
+    (-20.0, 300.0, 4000.0),  # thrust-dominated: X_s F_r + Y_s F_a and 0.9 F_a cot(a) - 0.1 F_r branches
+    (0.05, 1500.0, 200.0),   # inside the regularisation band omega ~ omega_reg
+])
+def test_harris_palmgren_derivatives_equal_central_differences(omega, fr, fa):
+    from user_forces.ball_bearing import harris_palmgren_fast, harris_palmgren_with_derivatives
+
+    k = harris_palmgren_constants(40.0, 4.5e4, 0.085, 0.001, 0.33, omega_reg=0.1)
+    T, d_fr, d_fa, d_om = harris_palmgren_with_derivatives(omega, fr, fa, k)
+    assert T == harris_palmgren_fast(omega, fr, fa, k)
+    assert T == pytest.approx(harris_palmgren_torque(omega, fr, fa, contact_angle_deg=40.0, C_s=4.5e4, d_m=0.085,
+                                                     z_hp=0.001, y_hp=0.33, omega_reg=0.1), rel=1e-12)
+    for x, d, h in ((0, d_fr, 1e-3), (1, d_fa, 1e-3), (2, d_om, 1e-4 * max(abs(omega), 0.1))):
+        args = [omega, fr, fa]
+        hi, lo = list(args), list(args)
+        idx = {0: 1, 1: 2, 2: 0}[x]
+        hi[idx] += h
+        lo[idx] -= h
+        fd = (harris_palmgren_with_derivatives(*hi, k)[0] - harris_palmgren_with_derivatives(*lo, k)[0]) / (2 * h)
+        # truncation ~ (h / omega)^2 <= 2e-8 here; the round-off of a central difference is ~eps |T| / h
+        assert abs(d - fd) <= 1e-6 * abs(fd) + 8 * 2.2e-16 * abs(T) / h, (x, d, fd)

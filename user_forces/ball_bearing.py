@@ -122,16 +122,39 @@ def harris_palmgren_constants(contact_angle_deg, C_s, d_m, z_hp, y_hp, *, X_s=0.
 
 def harris_palmgren_fast(omega_race_rel, f_radial, f_axial, k):
     """Drag torque from precomputed constants ``k`` (:func:`harris_palmgren_constants`): the same law
-    as :func:`harris_palmgren_torque` without per-call keyword handling (solver hot path)."""
+    as :func:`harris_palmgren_torque` without per-call keyword handling (solver hot path); the torque
+    of :func:`harris_palmgren_with_derivatives`, rounded the same way."""
+    return harris_palmgren_with_derivatives(omega_race_rel, f_radial, f_axial, k)[0]
+
+
+def harris_palmgren_with_derivatives(omega_race_rel, f_radial, f_axial, k):
+    """(T, dT/d|F_r|, dT/d|F_a|, dT/d omega) of the drag torque (eqs 23-27 as corrected above) from
+    the constants ``k``: the law and its analytic Jacobian in one place (the compiled bearing kernel
+    uses this function; tests/test_uf_ball_bearing.py checks the derivatives by differences).
+
+    Derivatives are with respect to the absolute loads; on the branches F_s = F_r and
+    F_beta = F_r (the catalogue floors) they are the floor's. T = A(F_s) F_beta g(omega) with
+    A = -z d_m (F_s / C_s)^y and g = omega / sqrt(omega^2 + omega_reg^2)."""
     x_s, y_s, inv_cs, zdm, y_hp, c4cot, c5, wreg2 = k
     fr = abs(f_radial)
     fa = abs(f_axial)
     f_s = x_s * fr + y_s * fa
+    dsr, dsa = x_s, y_s
     if f_s < fr:
-        f_s = fr
+        f_s, dsr, dsa = fr, 1.0, 0.0
     if f_s <= 0.0:
-        return 0.0
+        return 0.0, 0.0, 0.0, 0.0
     f_beta = c4cot * fa + c5 * fr
+    dbr, dba = c5, c4cot
     if f_beta < fr:
-        f_beta = fr
-    return -zdm * (f_s * inv_cs) ** y_hp * f_beta * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + wreg2)
+        f_beta, dbr, dba = fr, 1.0, 0.0
+    m2 = omega_race_rel * omega_race_rel + wreg2
+    m = sqrt(m2)
+    g = omega_race_rel / m
+    dg = wreg2 / (m2 * m)
+    A = -zdm * (f_s * inv_cs) ** y_hp
+    dA = A * y_hp / f_s
+    T = A * f_beta * g
+    dT_fr = (dA * dsr * f_beta + A * dbr) * g
+    dT_fa = (dA * dsa * f_beta + A * dba) * g
+    return T, dT_fr, dT_fa, A * f_beta * dg
