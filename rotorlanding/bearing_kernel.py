@@ -38,6 +38,7 @@ from user_forces.ball_bearing import ball_force as _ball_force_py
 from user_forces.ball_bearing import harris_palmgren_with_derivatives as _hp_law_py
 from user_forces.ball_bearing import worn_drag_development as _worn_dev_py
 from user_forces.ball_bearing import worn_drag_torque as _worn_drag_py
+from user_forces.ball_bearing import worn_friction_with_derivatives as _worn_fr_law_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
 from user_forces.ribbon import outer_race_friction as _outer_race_friction_py
 from user_forces.ribbon import ribbon_force as _ribbon_force_py
@@ -51,6 +52,7 @@ _axial_force = _njit(_axial_force_py)
 _axial_rub = _njit(_axial_rub_py)
 _worn_drag = _njit(_worn_drag_py)
 _worn_dev = _njit(_worn_dev_py)
+_worn_fr_law = _njit(_worn_fr_law_py)
 _ball_force = _njit(_ball_force_py)
 _hp_law = _njit(_hp_law_py)
 _ribbon_force = _njit(_ribbon_force_py)
@@ -59,10 +61,11 @@ _outer_race_friction = _njit(_outer_race_friction_py)
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
  P_YHP, P_C4COT, P_C5, P_WREG2, P_KRIB, P_CRIB, P_ETA, P_COUL, P_MUD, P_CI, P_CO, P_WI, P_WO, P_FACE, P_RUB,
- P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_TWPHI, P_SIZE) = range(44)
+ P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_TWPHI, P_WMU, P_WC4, P_WC5,
+ P_WWREG2, P_WPHI, P_SIZE) = range(49)
 
 
-# the kernel's slot of every BearingLaws field it reads (bools as 0/1; hp fills P_XS..P_WREG2)
+# the kernel's slot of every BearingLaws field it reads (bools as 0/1; hp fills P_XS..P_WREG2, worn P_WMU..P_WPHI)
 _P_FIELDS = {
     P_CL: "clearance", P_RR: "sleeve_radius", P_RI: "race_radius", P_KH: "k_hertz", P_EX: "exponent",
     P_KV: "k_visc", P_MU: "mu_rad", P_VREG: "v_reg", P_KB1: "k_b1", P_KB2: "k_b2", P_CB: "c_b",
@@ -81,6 +84,7 @@ def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
     for slot, name in _P_FIELDS.items():
         P[slot] = float(getattr(L, name))
     P[P_XS:P_WREG2 + 1] = L.hp
+    P[P_WMU:P_WPHI + 1] = L.worn
     P[P_WI], P[P_WO] = -L.inner_race_mass * G_ACC, -L.outer_race_mass * G_ACC
     P[P_CLAX], P[P_DM], P[P_KCB], P[P_KWS], P[P_KHS], P[P_CAX] = a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax
     return P
@@ -90,6 +94,12 @@ def bearing_parameters(spec: LandingSpec, b: BearingSpec) -> np.ndarray:
 def _hp(omi, fr, fa, P):
     """Harris-Palmgren drag torque and its derivatives (d|fr|, d|fa|, domi): the user_forces law."""
     return _hp_law(omi, fr, fa, (P[P_XS], P[P_YS], P[P_INVCS], P[P_ZDM], P[P_YHP], P[P_C4COT], P[P_C5], P[P_WREG2]))
+
+
+@_njit
+def _worn_fr(omi, fr, fa, rphi, P):
+    """Load-proportional worn drag and its derivatives (d|fr|, d|fa|, domi, dphi): the user_forces law."""
+    return _worn_fr_law(omi, fr, fa, rphi, (P[P_WMU], P[P_WC4], P[P_WC5], P[P_WWREG2], P[P_WPHI]))
 
 
 @_njit
@@ -268,6 +278,8 @@ def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, v
         t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
     if P[P_TW] != 0.0:
         t_race += _worn_drag(omi, P[P_TW], OMEGA_REG_HP, rphi, P[P_TWPHI])
+    if P[P_WMU] != 0.0:
+        t_race += _worn_fr(omi, math.sqrt(by * by + bz * bz), f_ax, rphi, P)[0]
     hy, hz = _ribbon_force(oy, oz, voy, voz, P[P_KRIB], P[P_CRIB], P[P_ETA], P[P_VREG])
     if P[P_COUL] != 0.0 and f_ax > 0.0:
         ky, kz = _outer_race_friction(voy, voz, f_ax, P[P_MUD], P[P_VREG])
@@ -443,9 +455,18 @@ def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
         g, dg = _worn_dev(rphi, P[P_TWPHI])
         Jv[6, 6] -= P[P_TW] * g * P[P_WREG2] / (m2 * math.sqrt(m2))
         Jq[6, 6] -= P[P_TW] * dg * omi / math.sqrt(m2)
-    if P[P_DRAG] != 0.0:
+    if P[P_DRAG] != 0.0 or P[P_WMU] != 0.0:
         fr = math.sqrt(by * by + bz * bz)
-        _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax, P)
+        dT_fr = dT_fa = dT_om = 0.0
+        if P[P_DRAG] != 0.0:
+            _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax, P)
+        if P[P_WMU] != 0.0:
+            # the worn bearing's load-proportional drag: same loads as Harris-Palmgren, plus its growth
+            _, wfr, wfa, wom, wphi = _worn_fr(omi, fr, f_ax, rphi, P)
+            dT_fr += wfr
+            dT_fa += wfa
+            dT_om += wom
+            Jq[6, 6] += wphi
         Jv[6, 6] += dT_om
         Jq[6, 3] += dT_fa * dfa_x
         Jv[6, 3] += dT_fa * dfa_xd

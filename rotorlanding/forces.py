@@ -26,7 +26,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub as _axial_rub_py
-from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque, worn_friction_with_derivatives
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -215,6 +215,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     kb1, kb2, cb = L.k_b1, L.k_b2, L.c_b
     drag, hp = L.ball_drag, L.hp
     worn, worn_phi = L.worn_drag_torque, L.worn_drag_growth_angle
+    worn_mu, worn_k = L.worn_drag_friction, L.worn
     krib, crib, eta = L.k_rib, L.c_rib, L.eta
     coulomb, mu_d = L.outer_coulomb, L.mu_d
     ci, co = L.inner_race_damping, L.outer_race_damping
@@ -246,6 +247,8 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
             t_race += harris_palmgren_fast(omega_i, math.hypot(by, bz), f_ax, hp)
         if worn:
             t_race += worn_drag_torque(omega_i, worn, OMEGA_REG_HP, phi_i, worn_phi)
+        if worn_mu:
+            t_race += worn_friction_with_derivatives(omega_i, math.hypot(by, bz), f_ax, phi_i, worn_k)[0]
         hy, hz = ribbon_force(oy, oz, voy, voz, krib, crib, eta, v_reg)
         if coulomb and f_ax > 0.0:
             ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from user_forces.ball_bearing import OMEGA_REG_DEFAULT, harris_palmgren_constants
+from user_forces.ball_bearing import OMEGA_REG_DEFAULT, harris_palmgren_constants, worn_friction_constants
 
 OMEGA_REG_HP = OMEGA_REG_DEFAULT  # rad/s: sign regularisation of the ball and worn drag torques (its reason there)
 
@@ -51,6 +51,8 @@ class BearingLaws:
     hp_y: float                 # -
     worn_drag_torque: float     # N m (0: effect worn_bearing_drag off)
     worn_drag_growth_angle: float  # rad
+    worn_drag_friction: float   # - (0: effect worn_bearing_drag off)
+    worn: tuple                 # worn_friction_constants(...) at OMEGA_REG_HP
     # ribbon damper and outer race, eqs 28-30
     k_rib: float                # N/m
     c_rib: float                # N s/m
@@ -101,6 +103,10 @@ def bearing_laws(scenario, bearing) -> BearingLaws:
         pitch_diameter=p.pitch_diameter, hp_z=p.hp_z, hp_y=p.hp_y,
         worn_drag_torque=p.worn_drag_torque if eff["worn_bearing_drag"] else 0.0,
         worn_drag_growth_angle=p.worn_drag_growth_angle,
+        worn_drag_friction=p.worn_drag_friction if eff["worn_bearing_drag"] else 0.0,
+        worn=tuple(worn_friction_constants(p.worn_drag_friction if eff["worn_bearing_drag"] else 0.0,
+                                           p.contact_angle_deg, p.pitch_diameter, p.worn_drag_growth_angle,
+                                           omega_reg=OMEGA_REG_HP)),
         k_rib=p.k_rib, c_rib=p.c_rib,
         eta=p.eta if eff["ribbon_cross_coupling"] else 0.0,
         outer_coulomb=bool(eff["outer_race_coulomb"] and p.axial_face), mu_d=p.mu_d,

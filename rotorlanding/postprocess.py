@@ -28,7 +28,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque, worn_friction_with_derivatives
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -152,6 +152,10 @@ def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> 
                 power["ball_drag"][k] += -thp * wi
             if L.worn_drag_torque > 0:
                 tw = worn_drag_torque(wi, L.worn_drag_torque, OMEGA_REG_HP, qk[r + 2], L.worn_drag_growth_angle)
+                cols["drag_torque_nm"][k] += tw
+                power["worn_bearing_drag"][k] += -tw * wi
+            if L.worn_drag_friction > 0:
+                tw = worn_friction_with_derivatives(wi, math.hypot(by, bz), n_ax, qk[r + 2], L.worn)[0]
                 cols["drag_torque_nm"][k] += tw
                 power["worn_bearing_drag"][k] += -tw * wi
             oy, oz, ovy, ovz = qk[o], qk[o + 1], vk[o], vk[o + 1]

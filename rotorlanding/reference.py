@@ -18,7 +18,7 @@ from scipy.integrate import solve_ivp
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque
+from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque, worn_friction_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -106,6 +106,11 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
                                                y_hp=L.hp_y, omega_reg=OMEGA_REG_HP)
         if L.worn_drag_torque:
             f[r + 2] += worn_drag_torque(wr, L.worn_drag_torque, OMEGA_REG_HP, q[r + 2], L.worn_drag_growth_angle)
+        if L.worn_drag_friction:
+            f[r + 2] += worn_friction_torque(wr, math.hypot(by, bz), n_ax, friction=L.worn_drag_friction,
+                                             contact_angle_deg=L.contact_angle_deg, d_m=L.pitch_diameter,
+                                             omega_reg=OMEGA_REG_HP, angle=q[r + 2],
+                                             growth_angle=L.worn_drag_growth_angle)
         hy, hz = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], L.k_rib, L.c_rib, L.eta, L.v_reg)
         f[o] += hy
         f[o + 1] += hz

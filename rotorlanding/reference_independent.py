@@ -35,7 +35,8 @@ from scipy.linalg import cho_factor, cho_solve
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
-from user_forces.ball_bearing import OMEGA_REG_DEFAULT, ball_force, harris_palmgren_torque, worn_drag_torque
+from user_forces.ball_bearing import (OMEGA_REG_DEFAULT, ball_force, harris_palmgren_torque, worn_drag_torque,
+                                     worn_friction_torque)
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
 from user_forces.spin import windage_torque
@@ -143,6 +144,10 @@ def reference_forces(spec, *, rub_v_reg: str = "v_reg_axial"):
                 f[r + 2] += thp
             if eff["worn_bearing_drag"]:
                 f[r + 2] += worn_drag_torque(om_i, p.worn_drag_torque, OMEGA_REG_DEFAULT, q[r + 2], p.worn_drag_growth_angle)
+                f[r + 2] += worn_friction_torque(om_i, math.hypot(fb[0], fb[1]), N, friction=p.worn_drag_friction,
+                                                 contact_angle_deg=p.contact_angle_deg, d_m=p.pitch_diameter,
+                                                 omega_reg=OMEGA_REG_DEFAULT, angle=q[r + 2],
+                                                 growth_angle=p.worn_drag_growth_angle)
             # ribbon + Coulomb on the outer race
             fr = ribbon_force(q[o], q[o + 1], v[o], v[o + 1], p.k_rib, p.c_rib,
                               p.eta if eff["ribbon_cross_coupling"] else 0.0, c.v_reg)

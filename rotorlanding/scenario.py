@@ -98,6 +98,7 @@ class Bearing:
     hp_y: float                 # Harris-Palmgren exponent y
     worn_drag_torque: float     # N m, Coulomb drag of a worn bearing (effect worn_bearing_drag)
     worn_drag_growth_angle: float  # rad, race rotation over which that drag develops (0: from the start)
+    worn_drag_friction: float   # -, load-proportional part of that drag: Coulomb coefficient of the ball contacts
     k_rib: float                # N/m (eq 28)
     c_rib: float                # N s/m
     eta: float                  # -, ribbon cross-coupling factor (eq 29)
@@ -265,6 +266,7 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         hp_z=t.number("hp_z", **nn), hp_y=t.number("hp_y", **nn),
         worn_drag_torque=t.number("worn_drag_torque", 0.0, **nn),
         worn_drag_growth_angle=t.number("worn_drag_growth_angle", 0.0, **nn),
+        worn_drag_friction=t.number("worn_drag_friction", 0.0, **nn),
         k_rib=t.number("k_rib", **pos), c_rib=t.number("c_rib", 0.0, **nn),
         eta=t.number("eta", 0.0, **nn), mu_d=t.number("mu_d", 0.0, **nn),
         axial_face=t.boolean("axial_face", False),
@@ -388,9 +390,11 @@ def _scenario(data: dict, source, name) -> Scenario:
         u.finish()
     elif effects["unbalance"]:
         raise InputError("effects.unbalance", True, "needs an [unbalance] table (station, magnitude)")
-    if effects["worn_bearing_drag"] and not any(b.worn_drag_torque > 0 for b in bearings.values()):
+    if effects["worn_bearing_drag"] and not any(b.worn_drag_torque > 0 or b.worn_drag_friction > 0
+                                                for b in bearings.values()):
         raise InputError("effects.worn_bearing_drag", True,
-                         "needs worn_drag_torque > 0 [N m] on at least one bearing (e.g. bearings.DE.worn_drag_torque)")
+                         "needs worn_drag_torque > 0 [N m] or worn_drag_friction > 0 on at least one bearing "
+                         "(e.g. bearings.DE.worn_drag_friction)")
 
     o = top.table("operating")
     speed = o.number("speed_rpm", nonnegative=True)
@@ -493,6 +497,7 @@ def _plausible(sc: Scenario) -> None:
                              "z up to 0.02")
         friction(f"{p}.mu_d", b.mu_d)
         friction(f"{p}.eta", b.eta)
+        friction(f"{p}.worn_drag_friction", b.worn_drag_friction)
         lighter = min(b.inner_race_mass, b.outer_race_mass)
         stiff(f"{p}.k_b1", b.k_b1, lighter, "lighter race")
         # the ball set's tangent stiffness k_b1 + 2 k_b2 r at a deflection of one clearance

@@ -25,7 +25,10 @@ def spec():
                                             "effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0",
                                             "bearings.NDE.worn_drag_torque=1.5",
                                             "bearings.DE.worn_drag_growth_angle=0.5",
-                                            "bearings.NDE.worn_drag_growth_angle=0.2"]))
+                                            "bearings.NDE.worn_drag_growth_angle=0.2",
+                                            # its load-proportional part (ball contacts sliding)
+                                            "bearings.DE.worn_drag_friction=0.2",
+                                            "bearings.NDE.worn_drag_friction=0.1"]))
 
 
 def _states(spec, b):
@@ -147,7 +150,9 @@ def test_rotor_loads_jacobian():
 @pytest.mark.parametrize("sets", [[], ["amb.t_drop=0.01", "amb.drop_axial=true"],
                                   ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0"],
                                   ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_torque=2.0",
-                                   "bearings.DE.worn_drag_growth_angle=0.3"]])
+                                   "bearings.DE.worn_drag_growth_angle=0.3"],
+                                  ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_friction=0.2",
+                                   "bearings.NDE.worn_drag_friction=0.2", "bearings.NDE.worn_drag_growth_angle=0.3"]])
 def test_exudyn_system_jacobian_analytic_equals_numerical(sets):
     """Same model with and without jacobianUserFunction: Exudyn's ODE2 RHS Jacobians agree at a
     state with radial contact and face contact (checks the sign and scaling convention); with the
@@ -188,7 +193,9 @@ def test_exudyn_system_jacobian_analytic_equals_numerical(sets):
         assert ok.all(), np.argwhere(~ok).tolist()
 
 
-@pytest.mark.parametrize("sets", [[], ["amb.t_drop=0.01"]])
+@pytest.mark.parametrize("sets", [[], ["amb.t_drop=0.01"],
+                                  ["effects.worn_bearing_drag=true", "bearings.DE.worn_drag_friction=0.2",
+                                   "bearings.NDE.worn_drag_friction=0.1", "bearings.NDE.worn_drag_growth_angle=0.3"]])
 def test_system_forces_equal_reference(sets):
     """The lean whole-system RHS (compiled kernel, used for the LSODA benchmark) equals the
     independent reference assembly, and its Jacobian matches finite differences."""

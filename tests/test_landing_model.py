@@ -97,6 +97,19 @@ def test_energy_balance_with_worn_bearing_drag():
     assert e["balance_error_relative"] < 0.01, e
 
 
+def test_energy_balance_with_load_proportional_worn_drag():
+    """The worn bearing's load-proportional drag (ball contacts sliding, worn_drag_friction) is
+    accounted for the same way: positive dissipation, and the energy balance closes."""
+    sc = _scenario(operating__t_end=0.25, solver__output_period=5e-5, effects__worn_bearing_drag=True,
+                   bearings__DE__worn_drag_friction=0.05, bearings__NDE__worn_drag_friction=0.05)
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"]
+    e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
+    # the race carries a few hundred N at ~700 rad/s: 0.05 x 0.0425 m x 300 N x 700 rad/s ~ 0.45 kW
+    assert e["dissipated_j"]["worn_bearing_drag"] > 10.0
+    assert e["balance_error_relative"] < 0.01, e
+
+
 def test_worn_bearing_drag_needs_a_torque():
     from rotorlanding.errors import InputError
 

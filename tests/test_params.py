@@ -31,6 +31,7 @@ def test_effects_off_resolve_to_laws_that_contribute_nothing():
         assert L_on.mu_rad == on.contact.mu_rad > 0 and L_on.k_visc == on.contact.k_visc > 0
         assert L_on.worn_drag_torque == p.worn_drag_torque > 0 and L_on.eta == p.eta > 0 and L_on.ball_drag
         assert (L_off.mu_rad, L_off.k_visc, L_off.eta, L_off.worn_drag_torque) == (0.0, 0.0, 0.0, 0.0)
+        assert L_off.worn_drag_friction == 0.0 and L_off.worn[0] == 0.0
         assert not (L_off.ball_drag or L_off.outer_coulomb or L_off.axial_rub)
         # values no effect switches stay as written
         assert (L_off.clearance, L_off.k_rib, L_off.k_hertz) == (p.clearance, p.k_rib, on.contact.k_hertz)
@@ -51,7 +52,7 @@ def test_axial_rub_and_coulomb_act_only_at_the_axial_face():
 @pytest.mark.parametrize("overrides", [[], OFF])
 def test_kernel_vector_is_the_resolved_record(overrides):
     spec = build_spec(load_scenario(FORWARD, overrides))
-    slots = list(bk._P_FIELDS) + list(range(bk.P_XS, bk.P_WREG2 + 1)) \
+    slots = list(bk._P_FIELDS) + list(range(bk.P_XS, bk.P_WREG2 + 1)) + list(range(bk.P_WMU, bk.P_WPHI + 1)) \
         + [bk.P_WI, bk.P_WO, bk.P_CLAX, bk.P_DM, bk.P_KCB, bk.P_KWS, bk.P_KHS, bk.P_CAX]
     assert sorted(slots) == list(range(bk.P_SIZE))       # every slot filled, none twice
     names = {f.name for f in fields(BearingLaws)}
@@ -61,3 +62,4 @@ def test_kernel_vector_is_the_resolved_record(overrides):
         for slot, name in bk._P_FIELDS.items():
             assert P[slot] == float(getattr(b.laws, name)), name
         assert np.array_equal(P[bk.P_XS:bk.P_WREG2 + 1], np.array(b.laws.hp))
+        assert np.array_equal(P[bk.P_WMU:bk.P_WPHI + 1], np.array(b.laws.worn))

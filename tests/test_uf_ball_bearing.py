@@ -138,3 +138,47 @@ def test_harris_palmgren_derivatives_equal_central_differences(omega, fr, fa):
         fd = (harris_palmgren_with_derivatives(*hi, k)[0] - harris_palmgren_with_derivatives(*lo, k)[0]) / (2 * h)
         # truncation ~ (h / omega)^2 <= 2e-8 here; the round-off of a central difference is ~eps |T| / h
         assert abs(d - fd) <= 1e-6 * abs(fd) + 8 * 2.2e-16 * abs(T) / h, (x, d, fd)
+
+
+def test_worn_friction_hand_calculation_and_sign():
+    """T = -mu_w (d_m / 2) F_beta g reg(omega): pure radial load (F_beta = F_r, Harris's floor) and a
+    thrust-dominated one (F_beta = 0.9 F_a cot a - 0.1 F_r), by hand."""
+    from user_forces.ball_bearing import worn_friction_torque
+
+    kw = dict(friction=0.2, contact_angle_deg=40.0, d_m=0.085, omega_reg=0.1)
+    # 2 kN radial, race far above omega_reg: 0.2 x 0.0425 m x 2000 N = 17 N m
+    assert worn_friction_torque(700.0, 2000.0, 0.0, **kw) == pytest.approx(-17.0, rel=1e-7)
+    # 300 N radial + 4 kN axial: F_beta = 0.9 x 4000 x cot(40 deg) - 0.1 x 300 = 4260.3 N
+    f_beta = 0.9 * 4000.0 / math.tan(math.radians(40.0)) - 30.0
+    assert worn_friction_torque(-700.0, 300.0, 4000.0, **kw) == pytest.approx(0.2 * 0.0425 * f_beta, rel=1e-7)
+    assert worn_friction_torque(0.0, 2000.0, 0.0, **kw) == 0.0
+    assert worn_friction_torque(700.0, 2000.0, 0.0, **{**kw, "friction": 0.0}) == 0.0  # off: nothing
+    # the load-proportional part scales with the load (the property the mu_rad switch rests on)
+    assert worn_friction_torque(700.0, 5000.0, 0.0, **kw) == pytest.approx(
+        2.5 * worn_friction_torque(700.0, 2000.0, 0.0, **kw), rel=1e-12)
+    # it develops with the race angle exactly as the load-independent worn drag
+    g = worn_drag_development(30.0, 60.0)[0]
+    assert worn_friction_torque(700.0, 2000.0, 0.0, angle=30.0, growth_angle=60.0, **kw) == pytest.approx(
+        g * worn_friction_torque(700.0, 2000.0, 0.0, **kw), rel=1e-14)
+
+
+@pytest.mark.parametrize("omega, fr, fa, angle, growth", [
+    (50.0, 800.0, 0.0, 20.0, 60.0),      # pure radial, developing
+    (-20.0, 300.0, 4000.0, -5.0, 60.0),  # thrust-dominated branch, negative spin and angle
+    (0.05, 1500.0, 200.0, 200.0, 60.0),  # inside the regularisation band
+    (400.0, 1500.0, 0.0, 3.0, 0.0),      # no development (growth angle 0)
+])
+def test_worn_friction_derivatives_equal_central_differences(omega, fr, fa, angle, growth):
+    from user_forces.ball_bearing import worn_friction_constants, worn_friction_with_derivatives
+
+    k = worn_friction_constants(0.2, 40.0, 0.085, growth, omega_reg=0.1)
+    out = worn_friction_with_derivatives(omega, fr, fa, angle, k)
+    T = out[0]
+    args = [omega, fr, fa, angle]
+    # (argument index, derivative, step)
+    for idx, d, h in ((1, out[1], 1e-3), (2, out[2], 1e-3), (0, out[3], 1e-4 * max(abs(omega), 0.1)), (3, out[4], 1e-4)):
+        hi, lo = list(args), list(args)
+        hi[idx] += h
+        lo[idx] -= h
+        fd = (worn_friction_with_derivatives(*hi, k)[0] - worn_friction_with_derivatives(*lo, k)[0]) / (2 * h)
+        assert abs(d - fd) <= 1e-6 * abs(fd) + 8 * 2.2e-16 * abs(T) / h, (idx, d, fd)

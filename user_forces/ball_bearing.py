@@ -88,6 +88,68 @@ def worn_drag_torque(omega_race_rel, torque, omega_reg=OMEGA_REG_DEFAULT, angle=
     return -torque * g * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + omega_reg * omega_reg)
 
 
+def worn_friction_constants(friction, contact_angle_deg, d_m, growth_angle=0.0, omega_reg=OMEGA_REG_DEFAULT,
+                            c4=0.9, c5=-0.1):
+    """Load-independent constants of :func:`worn_friction_with_derivatives`, once per bearing:
+    (friction d_m / 2, c4 cot(a), c5, omega_reg^2, growth_angle)."""
+    if not 0.0 < contact_angle_deg < 90.0:
+        raise ValueError("contact_angle_deg must be in (0, 90)")
+    ar = radians(contact_angle_deg)
+    return (0.5 * friction * d_m, c4 * cos(ar) / sin(ar), c5, omega_reg * omega_reg, growth_angle)
+
+
+def worn_friction_with_derivatives(omega_race_rel, f_radial, f_axial, angle, k):
+    """Load-proportional drag of a worn catcher bearing on the inner race (not in the paper) and
+    its derivatives: (T, dT/d|F_r|, dT/d|F_a|, dT/d omega, dT/d angle), constants ``k`` from
+    :func:`worn_friction_constants`.
+
+        T = -mu_w (d_m / 2) F_beta g(angle) omega / sqrt(omega^2 + omega_reg^2)
+
+    A bearing whose ball contacts slide (lubricant lost, debris, spalls, a damaged cage) turns
+    against Coulomb friction in those contacts, and Coulomb friction scales with the load they
+    carry. F_beta = max(c4 F_a cot a + c5 F_r, F_r) is Harris's measure of that load (eq 27 as
+    corrected, docs/paper_corrections.md #16), d_m / 2 the ball contacts' lever arm, mu_w their
+    friction coefficient: about 0.0015 for a healthy lubricated angular-contact bearing (SKF's
+    constant coefficient 0.002 on the bore, M = mu P d / 2) up to dry steel-on-steel sliding
+    (0.5) for a seized ball set. g is the developed share after the race has turned ``angle``
+    (:func:`worn_drag_development`).
+
+    Why load-proportional matters (docs/paper_corrections.md, "worn bearing"): the tangential force
+    the sleeve must pass to turn the race is then T / r_race, a fixed fraction of the contact load
+    at every load, bouncing included, so whether the sleeve can carry the race (mu_rad r_race N
+    against T) no longer hangs on the load of the moment: radial friction decides it.
+    """
+    half_mu_dm, c4cot, c5, wreg2, growth = k
+    fr = abs(f_radial)
+    fa = abs(f_axial)
+    f_beta = c4cot * fa + c5 * fr
+    dbr, dba = c5, c4cot
+    if f_beta < fr:
+        f_beta, dbr, dba = fr, 1.0, 0.0
+    if growth > 0.0:
+        e = exp(-abs(angle) / growth)
+        g = 1.0 - e
+        dg = (1.0 if angle >= 0.0 else -1.0) * e / growth
+    else:
+        g, dg = 1.0, 0.0
+    m2 = omega_race_rel * omega_race_rel + wreg2
+    m = sqrt(m2)
+    s = omega_race_rel / m
+    ds = wreg2 / (m2 * m)
+    A = -half_mu_dm * f_beta
+    T = A * g * s
+    return T, -half_mu_dm * dbr * g * s, -half_mu_dm * dba * g * s, A * g * ds, A * dg * s
+
+
+def worn_friction_torque(omega_race_rel, f_radial, f_axial, *, friction, contact_angle_deg, d_m,
+                         omega_reg=OMEGA_REG_DEFAULT, angle=0.0, growth_angle=0.0):
+    """The torque of :func:`worn_friction_with_derivatives` [N m] from plain arguments: ``friction``
+    mu_w [-], loads [N], contact angle [deg], pitch diameter d_m [m], race angle and growth angle
+    [rad]."""
+    k = worn_friction_constants(friction, contact_angle_deg, d_m, growth_angle, omega_reg)
+    return worn_friction_with_derivatives(omega_race_rel, f_radial, f_axial, angle, k)[0]
+
+
 def harris_palmgren_torque(omega_race_rel, f_radial, f_axial, *, contact_angle_deg, C_s, d_m,
                            z_hp, y_hp, X_s=0.5, c1=7.1429e-5, c2=-1.2443e-2, c3=0.64129,
                            c4=0.9, c5=-0.1, omega_reg=OMEGA_REG_DEFAULT):
