@@ -63,7 +63,7 @@ Bad input raises ValueError naming the argument, its value and what is allowed.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from math import cos, pi, radians, sin, sqrt
+from math import acos, cos, pi, radians, sin, sqrt
 
 ISO76_BALL_PA = 4200.0e6            # Pa, ISO 76 basis, ball bearings other than self-aligning
 ISO76_SELF_ALIGNING_BALL_PA = 4600.0e6
@@ -284,7 +284,6 @@ def load_zone_integral(epsilon, n_steps=4000):
 
 
 def _acos(x):
-    from math import acos
     return acos(max(-1.0, min(1.0, x)))
 
 

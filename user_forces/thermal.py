@@ -209,9 +209,8 @@ def radiation_conductance(emissivity, area, t_kelvin, t_amb_kelvin):
 def blok_partition(v1, v2, half_width, material1, material2):
     """Fraction of a sliding contact's friction heat that goes into body 1 (module docstring).
 
-    v1, v2 : speeds of the two surfaces relative to the contact zone [m/s] (magnitudes)
+    v1, v2 : speeds of the two surfaces relative to the contact zone [m/s] (signs ignored)
     half_width : contact half-width a [m] (Hertz)"""
-    _nonnegative("v1", abs(v1))
     _positive("half_width", half_width)
     w = []
     for v, mat in ((v1, material1), (v2, material2)):
@@ -414,7 +413,7 @@ class CatcherThermalGeometry:
 def catcher_bearing_network(geom=CatcherThermalGeometry(), material=STEEL_52100, t_amb=293.15,
                             g_inner_balls=0.5, g_outer_balls=0.5, h_outer_housing=1000.0,
                             g_sleeve_ring_contact=0.0, g_sleeve_shaft=0.0, g_housing_frame=2.0, h_rotating=30.0,
-                            h_still=10.0, k_gap=AIR_CONDUCTIVITY):
+                            h_still=10.0, k_gap=AIR_CONDUCTIVITY, radiation=True):
     """Five-node network of one catcher bearing (module docstring) with its conductances.
 
     g_inner_balls / g_outer_balls [W/K]: ball-set contact conductances (ball_contacts_conductance
@@ -424,7 +423,9 @@ def catcher_bearing_network(geom=CatcherThermalGeometry(), material=STEEL_52100,
     crests). g_sleeve_ring_contact [W/K]: the landed contact on top of the gas gap.
     g_sleeve_shaft [W/K]: sleeve into the rotor, counted to ambient (the rotor as a large sink).
     g_housing_frame [W/K]: housing into the machine frame, counted to ambient (assumed).
-    h_rotating / h_still: convection of the rings' exposed faces / the housing (Cengel's ranges)."""
+    h_rotating / h_still: convection of the rings' exposed faces / the housing (Cengel's ranges).
+    radiation: add each exposed surface's radiation linearised at ambient, 4 eps sigma T_a^3 A
+    (~1.8 W/m^2K at 293 K, eps 0.3; use radiation_conductance at the current T when hot)."""
     m = material
     k = m.conductivity
     c_sleeve = ring_heat_capacity(geom.sleeve_d_in, geom.sleeve_d_out, geom.sleeve_length, m)
@@ -443,11 +444,13 @@ def catcher_bearing_network(geom=CatcherThermalGeometry(), material=STEEL_52100,
     g_oh_contact = h_outer_housing * pi * geom.outer_d_out * geom.width
     r_oh = 1.0 / half_ring_conductance(r_oo, r_oi, r_oo, geom.width, k) + 1.0 / g_oh_contact
     face = lambda d_in, d_out: 2.0 * 0.25 * pi * (d_out * d_out - d_in * d_in)
-    g_amb = (convection_conductance(h_rotating, face(geom.sleeve_d_in, geom.sleeve_d_out)) + g_sleeve_shaft,
-             convection_conductance(h_rotating, face(geom.inner_d_in, geom.inner_d_out)),
-             0.0,
-             convection_conductance(h_still, face(geom.outer_d_in, geom.outer_d_out)),
-             convection_conductance(h_still, geom.housing_area) + g_housing_frame)
+    areas = (face(geom.sleeve_d_in, geom.sleeve_d_out), face(geom.inner_d_in, geom.inner_d_out), 0.0,
+             face(geom.outer_d_in, geom.outer_d_out), geom.housing_area)
+    h_conv = (h_rotating, h_rotating, 0.0, h_still, h_still)
+    h_rad = 4.0 * m.emissivity * STEFAN_BOLTZMANN * t_amb ** 3 if radiation else 0.0
+    extra = (g_sleeve_shaft, 0.0, 0.0, 0.0, g_housing_frame)
+    g_amb = tuple(convection_conductance(h + (h_rad if a > 0.0 else 0.0), a) + e
+                  for h, a, e in zip(h_conv, areas, extra))
     links = ((SLEEVE, INNER, 1.0 / r_sr), (INNER, BALLS, 1.0 / r_ib), (BALLS, OUTER, 1.0 / r_bo),
              (OUTER, HOUSING, 1.0 / r_oh))
     return ThermalNetwork(capacity=(c_sleeve, c_inner, c_balls, c_outer, geom.housing_capacity), links=links,

@@ -54,7 +54,7 @@ import numpy as np
 
 from user_forces.ball_bearing import harris_palmgren_fast
 from user_forces.contact_stress import ball_stiffness_kn
-from user_forces.thermal import BALLS, INNER, OUTER, SLEEVE, heat_sources, steady_state, step_backward_euler
+from user_forces.thermal import BALLS, INNER, OUTER, heat_sources, steady_state, step_backward_euler
 
 
 def _positive(name, value):
@@ -163,7 +163,12 @@ class FeedbackModel:
     k_n: float = field(default=0.0)
 
     def __post_init__(self):
-        _positive("clearance0 + 1", self.clearance0 + 1.0)
+        if not self.f_radial >= 0.0:
+            raise ValueError(f"f_radial = {self.f_radial!r}: must be >= 0")
+        if not self.alpha >= 0.0:
+            raise ValueError(f"alpha = {self.alpha!r}: must be >= 0")
+        _positive("k_axial", self.k_axial)
+        _positive("t_mount", self.t_mount)
         if self.k_n == 0.0:
             object.__setattr__(self, "k_n", ball_stiffness_kn(self.geom))
 
@@ -262,4 +267,4 @@ def transient_with_feedback(model, q_fixed, t_end, dt, t_limit=473.15, t0=None):
 
 __all__ = ["linear_growth", "internal_clearance_change", "journal_clearance_change", "thermal_preload",
            "preloaded_drag_torque", "FeedbackModel", "drag_state", "steady_with_feedback",
-           "transient_with_feedback", "SLEEVE"]
+           "transient_with_feedback"]
