@@ -193,3 +193,18 @@ def test_bad_input_names_argument():
     with pytest.raises(ValueError, match="race = 'middle'"):
         race_radii(G, "middle")
     assert hertz_point_contact(0.0, 0.01, 0.1, E_STAR) == (0.0, 0.0, 0.0, 0.0)
+
+
+def test_fast_leaves_compile_with_numba_and_match():
+    """The per-step forms (no checks, no calls) compile with numba and give the checked API's values."""
+    numba = pytest.importorskip("numba")
+    from user_forces.contact_stress import ball_loads_fast, hertz_point_fast
+    hp = numba.njit(hertz_point_fast)
+    rx, ry = race_radii(G, "inner")
+    assert hp(760.0, rx, ry, E_STAR) == pytest.approx(hertz_point_contact(760.0, rx, ry, E_STAR), rel=1e-13)
+    assert hp(500.0, 0.01, 0.01, E_STAR) == pytest.approx(hertz_point_contact(500.0, 0.01, 0.01, E_STAR), rel=1e-13)
+    bl = numba.njit(ball_loads_fast)
+    kn = ball_stiffness_kn(G)
+    for fr, fa, pd in ((2000.0, 0.0, 0.0), (2000.0, 5000.0, 5e-6), (0.0, 3000.0, 0.0)):
+        assert bl(fr, fa, 15, math.radians(40.0), kn, pd, 0.0) == pytest.approx(
+            ball_load_distribution(fr, fa, G, kn, pd, 0.0), rel=1e-12)

@@ -181,3 +181,15 @@ def test_network_validation_names_the_argument():
         ThermalNetwork(capacity=(1.0, 1.0), links=((0, 0, 1.0),), g_ambient=(0.0, 0.0), t_ambient=TA)
     with pytest.raises(ValueError, match="g_ambient: 1 values"):
         ThermalNetwork(capacity=(1.0, 1.0), links=(), g_ambient=(0.0,), t_ambient=TA)
+
+
+def test_partition_and_sources_fast_leaves_compile_with_numba():
+    numba = pytest.importorskip("numba")
+    from user_forces.thermal import blok_partition_fast, heat_sources_fast
+    s = STEEL_52100
+    bp = numba.njit(blok_partition_fast)
+    assert bp(22.0, 3.0, 2e-3, s.conductivity, s.diffusivity, 46.6, s.diffusivity) == pytest.approx(
+        blok_partition(22.0, 3.0, 2e-3, s, s), rel=1e-14)
+    hs = numba.njit(heat_sources_fast)
+    assert hs(100.0, 20.0, 30.0, 50.0, 10.0, 0.9, 0.6, 0.5, 0.25, 0.5) == pytest.approx(
+        heat_sources(100.0, 20.0, 30.0, 50.0, 10.0, 0.9, 0.6), rel=1e-15)

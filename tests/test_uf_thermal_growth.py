@@ -171,3 +171,15 @@ def test_transient_settles_below_and_runs_away_above_the_threshold():
     # the drag power rises without bound towards the end (the last hour's rise > the first's)
     p = tr2["p_drag"]
     assert p[-1] > 3.0 * p[0]
+
+
+def test_preload_fast_leaf_compiles_with_numba():
+    numba = pytest.importorskip("numba")
+    from user_forces.thermal_growth import thermal_preload_fast
+    f = numba.njit(thermal_preload_fast)
+    kn = ball_stiffness_kn(G)
+    a0 = (0.52 + 0.53 - 1.0) * 15.875e-3
+    for pd, k in ((-10e-6, math.inf), (-10e-6, 5e6), (3e-6, math.inf)):
+        q, fa, ang, delta, s = thermal_preload(pd, G, kn, k)
+        assert f(pd, 15, math.radians(40.0), a0, kn, k) == pytest.approx((q, fa, math.radians(ang), delta, s),
+                                                                          rel=1e-12, abs=1e-18)

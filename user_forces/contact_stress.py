@@ -113,12 +113,6 @@ def elliptic_ke(m):
     return k, k * (1.0 - s)
 
 
-def _curvature_ratio(m):
-    """B/A of the Hertz ellipse with parameter m = e^2 (>= 1, increasing in m)."""
-    k, e = elliptic_ke(m)
-    return (e / (1.0 - m) - k) / (k - e)
-
-
 def hertz_point_contact(force, r_x, r_y, e_star):
     """Elliptical Hertz contact: (p0, a, b, delta) for normal load ``force`` [N].
 
@@ -126,13 +120,21 @@ def hertz_point_contact(force, r_x, r_y, e_star):
                negative; both must come out > 0)
     e_star   : effective modulus [Pa]
     Returns peak pressure p0 [Pa], semi-axes a >= b [m] (a along the larger radius) and the
-    approach delta [m]. force = 0 gives zeros.
+    approach delta [m]. force = 0 gives zeros. Checks its input, then :func:`hertz_point_fast`.
     """
     _nonnegative("force", force)
     _positive("r_x", r_x)
     _positive("r_y", r_y)
     _positive("e_star", e_star)
-    if force == 0.0:
+    return hertz_point_fast(force, r_x, r_y, e_star)
+
+
+def hertz_point_fast(force, r_x, r_y, e_star):
+    """:func:`hertz_point_contact` without checks and without calls (a numba leaf, per step).
+
+    Solves B/A(e) = R_big/R_small by bisection on kappa = b/a (B/A increases as kappa falls),
+    with K(m), E(m) by the AGM inline (as :func:`elliptic_ke`)."""
+    if force <= 0.0:
         return 0.0, 0.0, 0.0, 0.0
     r_big = r_x if r_x >= r_y else r_y
     r_small = r_y if r_x >= r_y else r_x
@@ -142,19 +144,27 @@ def hertz_point_contact(force, r_x, r_y, e_star):
         r = sqrt(r_x * r_y)          # relative radius of the sphere (Johnson's R, not Hamrock's sum)
         a = (3.0 * force * r / (4.0 * e_star)) ** (1.0 / 3.0)
         return 3.0 * force / (2.0 * pi * a * a), a, a, a * a / r
-    # solve B/A(m) = ratio for m by bisection on kappa = b/a in (0, 1]: monotone, robust
     lo, hi = 0.0, 1.0                # kappa
+    kk = ee = m = kap = 0.0
     for _ in range(200):
         kap = 0.5 * (lo + hi)
-        if _curvature_ratio(1.0 - kap * kap) > ratio:
+        m = 1.0 - kap * kap
+        ag, bg, sg, wg = 1.0, kap, 0.5 * m, 0.5
+        for _ in range(40):
+            c = 0.5 * (ag - bg)
+            ag, bg = 0.5 * (ag + bg), sqrt(ag * bg)
+            wg *= 2.0
+            sg += wg * c * c
+            if abs(c) < 1e-17 * ag:
+                break
+        kk = pi / (2.0 * ag)
+        ee = kk * (1.0 - sg)
+        if (ee / (1.0 - m) - kk) / (kk - ee) > ratio:
             lo = kap                 # too eccentric: raise kappa
         else:
             hi = kap
         if hi - lo < 1e-15:
             break
-    kap = 0.5 * (lo + hi)
-    m = 1.0 - kap * kap
-    kk, ee = elliptic_ke(m)
     a_curv = 1.0 / (2.0 * r_big)
     a = (3.0 * force * (kk - ee) / (2.0 * pi * a_curv * e_star * m)) ** (1.0 / 3.0)
     b = a * kap
@@ -303,24 +313,6 @@ def _ball_sums(delta_r, delta_a, geom, k_n, clearance_diametral, phase):
     return fr, fa, qmax
 
 
-def _bisect_increasing(fun, target, hi):
-    """x >= 0 with fun(x) = target for increasing fun; ``hi`` is grown until it brackets."""
-    lo = 0.0
-    for _ in range(200):
-        if fun(hi) >= target:
-            break
-        lo, hi = hi, 2.0 * hi
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if fun(mid) < target:
-            lo = mid
-        else:
-            hi = mid
-        if hi - lo <= 1e-15 * hi:
-            break
-    return 0.5 * (lo + hi)
-
-
 def ball_load_distribution(f_radial, f_axial, geom, k_n=None, clearance_diametral=0.0, phase=0.0):
     """Ball loads of a bearing under (F_r, F_a) with rigid rings and a fixed contact angle.
 
@@ -331,7 +323,8 @@ def ball_load_distribution(f_radial, f_axial, geom, k_n=None, clearance_diametra
     as held axially by the mounting (delta_a = 0) and the carried thrust is reported, not imposed.
     Above it, both F_r and F_a are matched.
 
-    Returns (Q_max [N], delta_r [m], delta_a [m], F_a_carried [N]).
+    Returns (Q_max [N], delta_r [m], delta_a [m], F_a_carried [N]). Checks its input, then
+    :func:`ball_loads_fast`.
     """
     _nonnegative("f_radial", f_radial)
     _nonnegative("f_axial", f_axial)
@@ -339,32 +332,78 @@ def ball_load_distribution(f_radial, f_axial, geom, k_n=None, clearance_diametra
     if k_n is None:
         k_n = ball_stiffness_kn(geom)
     _positive("k_n", k_n)
-    if f_radial == 0.0 and f_axial == 0.0:
-        return 0.0, 0.0, 0.0, 0.0
-    scale = (max(f_radial, f_axial) / (geom.n_balls * k_n)) ** (2.0 / 3.0) + clearance_diametral
-    sa = sin(radians(geom.contact_angle_deg))
-    if f_axial == 0.0:
-        dr = _bisect_increasing(lambda x: _ball_sums(x, 0.0, geom, k_n, clearance_diametral, phase)[0],
-                                f_radial, scale)
-        fr, fa, qmax = _ball_sums(dr, 0.0, geom, k_n, clearance_diametral, phase)
-        return qmax, dr, 0.0, fa
-    if sa == 0.0:
+    if f_axial > 0.0 and geom.contact_angle_deg == 0.0:
         raise ValueError(f"f_axial = {f_axial!r}: a radial bearing (contact_angle_deg = 0) carries no axial load here")
+    return ball_loads_fast(f_radial, f_axial, geom.n_balls, radians(geom.contact_angle_deg), k_n,
+                           clearance_diametral, phase)
 
-    def dr_of(da):
-        if f_radial == 0.0:
+
+def ball_loads_fast(f_radial, f_axial, n_balls, contact_angle_rad, k_n, clearance_diametral, phase):
+    """:func:`ball_load_distribution` without checks (a numba leaf: plain floats, inner helpers).
+
+    Nested bisections: delta_r for F_r at a given delta_a (the radial sum rises with delta_r), and
+    delta_a for F_a (the axial sum at the matching delta_r rises with delta_a); each bracket is
+    grown by doubling from the Hertz scale (F / (Z K_n))^(2/3) + P_d."""
+    ca = cos(contact_angle_rad)
+    sa = sin(contact_angle_rad)
+
+    def sums(dr, da):
+        fr = 0.0
+        fa = 0.0
+        qmax = 0.0
+        for j in range(n_balls):
+            psi = phase + 2.0 * pi * j / n_balls
+            d = da * sa + (dr * cos(psi) - 0.5 * clearance_diametral) * ca
+            if d > 0.0:
+                q = k_n * d ** 1.5
+                fr += q * ca * cos(psi)
+                fa += q * sa
+                if q > qmax:
+                    qmax = q
+        return fr, fa, qmax
+
+    def dr_for(da, scale):
+        if f_radial <= 0.0:
             return 0.0
-        return _bisect_increasing(lambda x: _ball_sums(x, da, geom, k_n, clearance_diametral, phase)[0],
-                                  f_radial, scale)
+        lo, hi = 0.0, scale
+        for _ in range(200):
+            if sums(hi, da)[0] >= f_radial:
+                break
+            lo, hi = hi, 2.0 * hi
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if sums(mid, da)[0] < f_radial:
+                lo = mid
+            else:
+                hi = mid
+            if hi - lo <= 1e-15 * hi:
+                break
+        return 0.5 * (lo + hi)
 
-    if _ball_sums(dr_of(0.0), 0.0, geom, k_n, clearance_diametral, phase)[1] >= f_axial:
-        dr = dr_of(0.0)
-        fr, fa, qmax = _ball_sums(dr, 0.0, geom, k_n, clearance_diametral, phase)
-        return qmax, dr, 0.0, fa
-    da = _bisect_increasing(lambda y: _ball_sums(dr_of(y), y, geom, k_n, clearance_diametral, phase)[1],
-                            f_axial, scale)
-    dr = dr_of(da)
-    fr, fa, qmax = _ball_sums(dr, da, geom, k_n, clearance_diametral, phase)
+    if f_radial <= 0.0 and f_axial <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0
+    big = f_radial if f_radial > f_axial else f_axial
+    scale = (big / (n_balls * k_n)) ** (2.0 / 3.0) + clearance_diametral
+    dr0 = dr_for(0.0, scale)
+    fr0, fa0, q0 = sums(dr0, 0.0)
+    if f_radial > 0.0 and fa0 >= f_axial:
+        return q0, dr0, 0.0, fa0                 # held axially: carries its induced thrust
+    lo, hi = 0.0, scale
+    for _ in range(200):
+        if sums(dr_for(hi, scale), hi)[1] >= f_axial:
+            break
+        lo, hi = hi, 2.0 * hi
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if sums(dr_for(mid, scale), mid)[1] < f_axial:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * hi:
+            break
+    da = 0.5 * (lo + hi)
+    dr = dr_for(da, scale)
+    fr, fa, qmax = sums(dr, da)
     return qmax, dr, da, fa
 
 

@@ -212,11 +212,16 @@ def blok_partition(v1, v2, half_width, material1, material2):
     v1, v2 : speeds of the two surfaces relative to the contact zone [m/s] (signs ignored)
     half_width : contact half-width a [m] (Hertz)"""
     _positive("half_width", half_width)
-    w = []
-    for v, mat in ((v1, material1), (v2, material2)):
-        pe = abs(v) * half_width / (2.0 * mat.diffusivity)
-        w.append(mat.conductivity * sqrt(BLOK_C0 + pe))
-    return w[0] / (w[0] + w[1])
+    return blok_partition_fast(v1, v2, half_width, material1.conductivity, material1.diffusivity,
+                               material2.conductivity, material2.diffusivity)
+
+
+def blok_partition_fast(v1, v2, half_width, k1, chi1, k2, chi2):
+    """:func:`blok_partition` on plain floats (numba leaf): conductivities k [W/mK], diffusivities
+    chi [m^2/s]."""
+    w1 = k1 * sqrt(BLOK_C0 + abs(v1) * half_width / (2.0 * chi1))
+    w2 = k2 * sqrt(BLOK_C0 + abs(v2) * half_width / (2.0 * chi2))
+    return w1 / (w1 + w2)
 
 
 def heat_sources(p_radial_slip, p_axial_rub, p_ball_drag, p_worn_drag, p_ribbon, beta_radial, beta_axial,
@@ -237,6 +242,13 @@ def heat_sources(p_radial_slip, p_axial_rub, p_ball_drag, p_worn_drag, p_ribbon,
     if drag_ball_share + drag_inner_share > 1.0:
         raise ValueError(f"drag_inner_share = {drag_inner_share!r}: with drag_ball_share = {drag_ball_share!r} "
                          "the shares must not exceed 1")
+    return heat_sources_fast(p_radial_slip, p_axial_rub, p_ball_drag, p_worn_drag, p_ribbon, beta_radial, beta_axial,
+                             drag_ball_share, drag_inner_share, ribbon_outer_share)
+
+
+def heat_sources_fast(p_radial_slip, p_axial_rub, p_ball_drag, p_worn_drag, p_ribbon, beta_radial, beta_axial,
+                      drag_ball_share, drag_inner_share, ribbon_outer_share):
+    """:func:`heat_sources` without checks (numba leaf, per step)."""
     p_drag = p_ball_drag + p_worn_drag
     q_sleeve = beta_radial * p_radial_slip + beta_axial * p_axial_rub
     q_inner = (1.0 - beta_radial) * p_radial_slip + (1.0 - beta_axial) * p_axial_rub + drag_inner_share * p_drag

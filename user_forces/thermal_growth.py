@@ -90,48 +90,56 @@ def journal_clearance_change(r_bore, r_sleeve, dt_inner, dt_sleeve, alpha_ring, 
     return alpha_ring * r_bore * dt_inner - a_s * r_sleeve * dt_sleeve
 
 
-def _preload_at(s, clearance, geom, k_n):
-    a0 = (geom.f_inner + geom.f_outer - 1.0) * geom.ball_diameter
-    ang = radians(geom.contact_angle_deg)
-    r = a0 * cos(ang) + 0.5 * clearance
-    x = a0 * sin(ang) + s
-    dist = sqrt(r * r + x * x)
-    delta = a0 - dist
-    if delta <= 0.0:
-        return 0.0, 0.0, atan2(x, r), 0.0
-    q = k_n * delta ** 1.5
-    alpha = atan2(x, r)
-    return q, geom.n_balls * q * sin(alpha), alpha, delta
-
-
 def thermal_preload(clearance_diametral, geom, k_n=None, k_axial=inf):
     """Preload of a ball set whose diametral clearance is ``clearance_diametral`` [m] (negative =
     interference), rings held axially by a mounting of stiffness ``k_axial`` [N/m] (inf = rigid).
 
-    Returns (Q per ball [N], F_a axial resultant [N], contact angle [deg], delta_n [m], s [m])."""
+    Returns (Q per ball [N], F_a axial resultant [N], contact angle [deg], delta_n [m], s [m]).
+    Checks its input, then :func:`thermal_preload_fast`."""
     if k_n is None:
         k_n = ball_stiffness_kn(geom)
     _positive("k_n", k_n)
     _positive("k_axial", k_axial)
-    q, fa, alpha, delta = _preload_at(0.0, clearance_diametral, geom, k_n)
+    q, fa, alpha, delta, s = thermal_preload_fast(
+        clearance_diametral, geom.n_balls, radians(geom.contact_angle_deg),
+        (geom.f_inner + geom.f_outer - 1.0) * geom.ball_diameter, k_n, k_axial)
+    return q, fa, degrees(alpha), delta, s
+
+
+def thermal_preload_fast(clearance_diametral, n_balls, contact_angle_rad, a0, k_n, k_axial):
+    """:func:`thermal_preload` without checks (numba leaf); a0 = (f_i + f_o - 1) D [m].
+
+    Returns (Q, F_a, contact angle [rad], delta_n, s). With a spring, F_a(s) falls as the rings
+    move apart while k s rises: one crossing in [0, s_free], found by bisection."""
+    ca = cos(contact_angle_rad)
+    sa = sin(contact_angle_rad)
+    r = a0 * ca + 0.5 * clearance_diametral
+
+    def at(s):
+        x = a0 * sa + s
+        delta = a0 - sqrt(r * r + x * x)
+        alpha = atan2(x, r)
+        if delta <= 0.0:
+            return 0.0, 0.0, alpha, 0.0
+        q = k_n * delta ** 1.5
+        return q, n_balls * q * sin(alpha), alpha, delta
+
+    q, fa, alpha, delta = at(0.0)
     if fa == 0.0 or k_axial == inf:
-        return q, fa, degrees(alpha), delta, 0.0
-    # F_a(s) falls as the rings move apart, k s rises: one crossing in [0, s_free]
-    a0 = (geom.f_inner + geom.f_outer - 1.0) * geom.ball_diameter
-    r = a0 * cos(radians(geom.contact_angle_deg)) + 0.5 * clearance_diametral
-    s_free = sqrt(max(a0 * a0 - r * r, 0.0)) - a0 * sin(radians(geom.contact_angle_deg))
+        return q, fa, alpha, delta, 0.0
+    s_free = sqrt(max(a0 * a0 - r * r, 0.0)) - a0 * sa
     lo, hi = 0.0, max(s_free, 0.0)
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        if _preload_at(mid, clearance_diametral, geom, k_n)[1] > k_axial * mid:
+        if at(mid)[1] > k_axial * mid:
             lo = mid
         else:
             hi = mid
         if hi - lo <= 1e-16 + 1e-14 * hi:
             break
     s = 0.5 * (lo + hi)
-    q, fa, alpha, delta = _preload_at(s, clearance_diametral, geom, k_n)
-    return q, fa, degrees(alpha), delta, s
+    q, fa, alpha, delta = at(s)
+    return q, fa, alpha, delta, s
 
 
 def preloaded_drag_torque(omega_race_rel, f_radial, f_axial_ext, f_axial_preload, hp_constants):
@@ -179,7 +187,9 @@ def drag_state(model, t_nodes):
     dpd = internal_clearance_change(g.pitch_diameter, g.ball_diameter, t_nodes[INNER] - model.t_mount,
                                     t_nodes[OUTER] - model.t_mount, t_nodes[BALLS] - model.t_mount, model.alpha)
     pd = model.clearance0 + dpd
-    fa_pre = thermal_preload(pd, g, model.k_n, model.k_axial)[1] if pd < 0.0 else 0.0
+    fa_pre = thermal_preload_fast(pd, g.n_balls, radians(g.contact_angle_deg),
+                                  (g.f_inner + g.f_outer - 1.0) * g.ball_diameter, model.k_n,
+                                  model.k_axial)[1] if pd < 0.0 else 0.0
     torque = preloaded_drag_torque(model.omega, model.f_radial, model.f_axial, fa_pre, model.hp_constants)
     return abs(torque * model.omega), torque, pd, fa_pre
 
@@ -266,5 +276,6 @@ def transient_with_feedback(model, q_fixed, t_end, dt, t_limit=473.15, t0=None):
 
 
 __all__ = ["linear_growth", "internal_clearance_change", "journal_clearance_change", "thermal_preload",
+           "thermal_preload_fast",
            "preloaded_drag_torque", "FeedbackModel", "drag_state", "steady_with_feedback",
            "transient_with_feedback"]
