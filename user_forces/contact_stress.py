@@ -5,7 +5,8 @@ Laws (SI units: N, m, Pa; angles in degrees only where the name says ``_deg``):
 Effective modulus (Hertz; Johnson, Contact Mechanics, 1985, ch. 4):
     1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
 
-Line contact, two parallel cylinders of length L (Johnson eqs 4.43-4.45):
+Line contact, two parallel cylinders of length L (Johnson, Contact Mechanics, sec. 4.3; quoted;
+the tests check the load balance of the semi-elliptical pressure and the sqrt(F) scaling):
     b  = sqrt(4 F R* / (pi L E*))          (half-width)
     p0 = sqrt(F E* / (pi L R*)) = 2 F / (pi b L),
     1/R* = 1/R1 + 1/R2, with a concave surface (the inner-race bore) counted negative: a sleeve
@@ -16,10 +17,11 @@ Line contact, two parallel cylinders of length L (Johnson eqs 4.43-4.45):
     A crowned (barrel-shaped) sleeve, or a tilted one touching on an edge radius, is a point
     contact: :func:`sleeve_ring_crowned` (circumferential radius R*, axial radius = the crown).
 
-Point contact (Hertz, elliptical; Johnson section 4.2, eqs 4.36-4.40; the ratio relation also in
-Roark/Pilkey's contact-stress table, checked): principal relative curvatures A = 1/(2 R_big),
-B = 1/(2 R_small), B >= A; contact ellipse semi-axes a >= b, e^2 = 1 - b^2/a^2, with the complete
-elliptic integrals K(e), E(e) (parameter m = e^2):
+Point contact (Hertz, elliptical; Johnson section 4.2, quoted; the curvature-ratio relation
+checked in a contact-stress handbook table, "9 Contact Stresses", Table 9-4, yumpu copy):
+principal relative curvatures A = 1/(2 R_big), B = 1/(2 R_small), B >= A; contact ellipse
+semi-axes a >= b, e^2 = 1 - b^2/a^2, with the complete elliptic integrals K(e), E(e)
+(parameter m = e^2):
     B/A = (E/(1 - e^2) - K) / (K - E)                     (fixes e from the geometry)
     a^3 = 3 P (K - E) / (2 pi A E* e^2),  b = a sqrt(1 - e^2)
     p0  = 3 P / (2 pi a b)                                 (peak pressure)
@@ -175,7 +177,7 @@ def hertz_point_fast(force, r_x, r_y, e_star):
 def line_contact(force, length, r_equiv, e_star):
     """Hertz line contact: (p0, b) for total load ``force`` [N] over ``length`` [m].
 
-    p0 = sqrt(F E* / (pi L R*)), b = sqrt(4 F R* / (pi L E*)) (Johnson eqs 4.43-4.45);
+    p0 = sqrt(F E* / (pi L R*)), b = sqrt(4 F R* / (pi L E*)) (Johnson sec. 4.3);
     r_equiv = R* [m] (> 0), e_star [Pa]."""
     _nonnegative("force", force)
     _positive("length", length)
