@@ -208,3 +208,18 @@ def test_fast_leaves_compile_with_numba_and_match():
     for fr, fa, pd in ((2000.0, 0.0, 0.0), (2000.0, 5000.0, 5e-6), (0.0, 3000.0, 0.0)):
         assert bl(fr, fa, 15, math.radians(40.0), kn, pd, 0.0) == pytest.approx(
             ball_load_distribution(fr, fa, G, kn, pd, 0.0), rel=1e-12)
+
+
+def test_line_contact_is_the_slender_limit_of_the_elliptical_solution():
+    """Independent check of the line-contact law: a very elongated Hertz ellipse (R_y/R_x = 1e4,
+    exact elliptic integrals) is locally a line contact carrying w = pi p0 b / 2 per unit length at
+    its centre; the line law with that w must give its p0 and b. Found to 2.3e-5 (the error falls
+    as R_x/R_y: 2e-3 at 1e2, 2e-4 at 1e3)."""
+    rx = 0.01
+    p0, a, b, _ = hertz_point_contact(1000.0, rx, 1e4 * rx, E_STAR)
+    w = math.pi * p0 * b / 2
+    pl, bl = line_contact(w, 1.0, rx, E_STAR)
+    assert pl == pytest.approx(p0, rel=1e-4) and bl == pytest.approx(b, rel=1e-4)
+    p0c, _, bc, _ = hertz_point_contact(1000.0, rx, 1e2 * rx, E_STAR)
+    plc, blc = line_contact(math.pi * p0c * bc / 2, 1.0, rx, E_STAR)
+    assert abs(plc / p0c - 1) > 10 * abs(pl / p0 - 1)               # converging, not coincidence

@@ -6,7 +6,8 @@ Effective modulus (Hertz; Johnson, Contact Mechanics, 1985, ch. 4):
     1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2.
 
 Line contact, two parallel cylinders of length L (Johnson, Contact Mechanics, sec. 4.3; quoted;
-the tests check the load balance of the semi-elliptical pressure and the sqrt(F) scaling):
+the tests check the load balance, the sqrt(F) scaling, and that it is the slender limit of
+the exact elliptical solution below, to 2e-5 at R_y/R_x = 1e4):
     b  = sqrt(4 F R* / (pi L E*))          (half-width)
     p0 = sqrt(F E* / (pi L R*)) = 2 F / (pi b L),
     1/R* = 1/R1 + 1/R2, with a concave surface (the inner-race bore) counted negative: a sleeve
