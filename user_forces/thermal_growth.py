@@ -220,16 +220,16 @@ def steady_with_feedback(model, q_fixed, t_limit=473.15, p_cap=2.0e4, max_iter=2
             return inf
         return drag_state(model, t)[0]
 
-    t_cold = steady_state(_heat(model, q_fixed, 0.0), lap, g_amb, t_amb)
     p_cold = drag_state(model, np.full(model.network.n, model.t_mount))[0]
     t_open = steady_state(_heat(model, q_fixed, p_cold), lap, g_amb, t_amb)
     if float(np.max(t_open)) > t_limit:
         return dict(status="overheat", p_drag=None, t_nodes=t_open, loop_gain=None, clearance=None, preload=None)
-    del t_cold
-    # p_out is nondecreasing in P (more heat, hotter rings, less clearance, more preload, more
-    # drag), so the iteration P <- p_out(P) from P = 0 rises monotonically to the smallest fixed
-    # point -- the stable one -- or leaves the temperature limit (p_out = inf) when there is none.
-    # Grid scans miss it near the fold, where the stable and the unstable roots merge.
+    # p_out is nondecreasing in P as long as more drag heat eats clearance (the inner ring and the
+    # balls warm more than the outer ring: true for this network, whose steady temperatures all
+    # rise with any heat input, A^-1 >= 0, and whose outer ring is tied to the housing); then the
+    # iteration P <- p_out(P) from P = 0 rises monotonically to the smallest fixed point -- the
+    # stable one -- or leaves the temperature limit (p_out = inf) when there is none. Grid scans
+    # miss it near the fold, where the stable and the unstable roots merge.
     p = 0.0
     root = None
     for _ in range(max_iter):
