@@ -176,11 +176,13 @@ def test_radiation_secant_is_exact_loss():
 
 def test_network_validation_names_the_argument():
     with pytest.raises(ValueError, match=r"capacity\[1\] = 0.0"):
-        ThermalNetwork(capacity=(1.0, 0.0), links=(), g_ambient=(0.0, 0.0), t_ambient=TA)
+        ThermalNetwork(capacity=(1.0, 0.0), links=(), g_ambient=(0.0, 0.0), t_ambient=TA, names=("a", "b"))
     with pytest.raises(ValueError, match=r"link \(0, 0\)"):
-        ThermalNetwork(capacity=(1.0, 1.0), links=((0, 0, 1.0),), g_ambient=(0.0, 0.0), t_ambient=TA)
+        ThermalNetwork(capacity=(1.0, 1.0), links=((0, 0, 1.0),), g_ambient=(0.0, 0.0), t_ambient=TA, names=("a", "b"))
     with pytest.raises(ValueError, match="g_ambient: 1 values"):
-        ThermalNetwork(capacity=(1.0, 1.0), links=(), g_ambient=(0.0,), t_ambient=TA)
+        ThermalNetwork(capacity=(1.0, 1.0), links=(), g_ambient=(0.0,), t_ambient=TA, names=("a", "b"))
+    with pytest.raises(ValueError, match="names: 5 names, must be 2"):
+        ThermalNetwork(capacity=(1.0, 1.0), links=(), g_ambient=(0.0, 0.0), t_ambient=TA)
 
 
 def test_partition_and_sources_fast_leaves_compile_with_numba():

@@ -276,6 +276,8 @@ class ThermalNetwork:
                 raise ValueError(f"capacity[{i}] = {c!r}: must be > 0")
         if len(self.g_ambient) != n:
             raise ValueError(f"g_ambient: {len(self.g_ambient)} values, must be {n} (one per node)")
+        if len(self.names) != n:
+            raise ValueError(f"names: {len(self.names)} names, must be {n} (one per node)")
         for i, g in enumerate(self.g_ambient):
             if not g >= 0.0:
                 raise ValueError(f"g_ambient[{i}] = {g!r}: must be >= 0")
