@@ -146,6 +146,10 @@ def _run(job):
 def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
     """Sum of relative errors vs the experiments over ``cases``; 1 per wrong whirl class.
 
+    A forward case run as an ensemble is judged at the DE journal, as ``validate`` judges it (the
+    paper measured its whirl frequencies there): the DE's median frequency, plus ``CASE_de``, the
+    share of drops whose DE journal does not whirl forward.
+
     The backward case also scores persistence: the paper's whirl (Figs. 20-24) lasts from its onset
     to the end of the record, so ``1 - persistence`` (share of the time after onset not whirling)
     is added as ``bw_persist``. ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
@@ -156,7 +160,13 @@ def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
         if case not in cases:
             continue
         r = res.get(case, {})
-        parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
+        de = r.get("de")
+        if de:  # an ensemble: judged at the DE journal, where the paper measured (as validate does)
+            f_de = de.get("frequency_hz") if de.get("direction") == "forward" else None
+            parts[case] = abs(f_de - f_exp) / f_exp if f_de else 1.0
+            parts[case + "_de"] = 1.0 - de["counts"].get("forward", 0) / sum(de["counts"].values())
+        else:
+            parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
     r = res.get("fw7000", {})
     if "fw7000" in cases and r.get("force_max_n"):
         parts["force"] = min(1.0, abs(r["force_max_n"] / paper()["table2"]["experimental"]["v_force_max_n"] - 1) / 2)

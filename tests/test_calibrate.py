@@ -144,3 +144,14 @@ def test_switch_case_scores_the_share_of_whirling_drops_at_normal_friction():
     assert score({"bw015": {"direction": "none"}}, ["bw015"])[1]["bw015_whirls"] == 0.0
     assert score({"bw015": {"direction": "backward"}}, ["bw015"])[1]["bw015_whirls"] == 1.0
     assert "bw015_whirls" not in score({})[1]  # opt-in: not among the default cases
+
+
+def test_forward_ensembles_are_judged_at_the_de_journal():
+    """An ensemble forward case scores the DE journal's median frequency and the share of drops
+    whose DE journal does not whirl forward (the paper measured the DE), not the landing majority."""
+    ens = {"direction": "forward", "frequency_hz": 46.0,
+           "de": {"counts": {"forward": 6, "none": 2}, "direction": "forward", "frequency_hz": 43.2}}
+    total, parts = score({"fw3000": ens}, ["fw3000"])
+    assert parts == {"fw3000": pytest.approx(0.1), "fw3000_de": pytest.approx(0.25)}
+    calm_de = dict(ens, de={"counts": {"none": 5, "forward": 3}, "direction": "none", "frequency_hz": None})
+    assert score({"fw3000": calm_de}, ["fw3000"])[1] == {"fw3000": 1.0, "fw3000_de": pytest.approx(0.625)}
