@@ -535,6 +535,28 @@ def bearing_functions(spec: LandingSpec, b: BearingSpec, tilt: list | None = Non
     return force, jacobian, P
 
 
+@_njit
+def _normal_forces(P, dy, dz, dvy, dvz):
+    out = np.zeros(dy.shape[0])
+    for k in range(dy.shape[0]):
+        # F_N does not depend on the spins or the friction coefficient (zeros here)
+        out[k] = _radial_contact(dy[k], dz[k], dvy[k], dvz[k], 0.0, 0.0, P[P_CL], P[P_KH], P[P_EX], P[P_KV], 0.0,
+                                 P[P_VREG], P[P_RR], P[P_RI])[4]
+    return out
+
+
+def contact_normal_forces(spec: LandingSpec, q: np.ndarray, v: np.ndarray) -> list[np.ndarray]:
+    """Contact normal force F_N (eq 15) of each bearing at every stored sample: the compiled
+    ``user_forces.radial_contact`` law over the samples (the coast-down's decimation reads it at
+    the full output rate, where a Python call per sample would cost ~5 % of the solve)."""
+    out = []
+    for b in spec.bearings:
+        s, r = b.i_station, b.i_race
+        out.append(_normal_forces(bearing_parameters(spec, b), q[:, s] - q[:, r], q[:, s + 1] - q[:, r + 1],
+                                  v[:, s] - v[:, r], v[:, s + 1] - v[:, r + 1]))
+    return out
+
+
 # ---------------------------------------------------------------------------------------------
 # All bearings (+ the spin/axial rotor loads) in one connector: one Python call per residual.
 

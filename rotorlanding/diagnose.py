@@ -32,6 +32,7 @@ from .effects import CATALOGUE
 from .errors import InputError
 from .features import extract_features, gap_points
 from .measured import Measurement
+from .mechanisms import rotor_force
 
 #: gaps below this are treated as noise: on clean data (the model against its own resampled,
 #: noisy output) the gap is 0.03-0.1, so a disagreement must exceed 3x that to be explained
@@ -64,10 +65,10 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
     series = evaluate(spec, t, q, v)
     chans = {}
     for b in spec.bearings:
-        for ax in ("y", "z"):
+        force = rotor_force(series, b.name)
+        for ax, f in zip(("y", "z"), force):
             chans[f"{b.name}_{ax}_m"] = (t, series[f"{b.name}_{ax}_m"])
-            chans[f"{b.name}_force_{ax}_n"] = (t, series[f"{b.name}_contact_force_{ax}_n"]
-                                              + series[f"{b.name}_rub_force_{ax}_n"])
+            chans[f"{b.name}_force_{ax}_n"] = (t, f)
         chans[f"{b.name}_inner_race_speed_rpm"] = (t, series[f"{b.name}_race_speed_rpm"])
     chans["rotor_speed_rpm"] = (t, series["rotor_speed_rpm"])
     chans["axial_m"] = (t, series["axial_position_m"])

@@ -25,6 +25,7 @@ import numpy as np
 
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
+from .mechanisms import series_units
 from .postprocess import evaluate, summarize
 from .results import write_results
 from .safeio import WriteError, atomic_write_text, check_out_dir, fault, unlink_quietly
@@ -126,7 +127,8 @@ def _write(scenario, out, spec, t, q, v, stats, plots) -> dict:
                         f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
     summary["warnings"] = warnings
     write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
-                  t=t, q=q, v=v, series=series, summary=summary, complete=stats["complete"],
+                  t=t, q=q, v=v, series=series, units=series_units(spec.bearing_names), summary=summary,
+                  complete=stats["complete"],
                   t_reached=float(t[-1]), message=summary.get("message", ""))
     # the summary is final only once results.h5 is: a kill in between leaves `running`
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))

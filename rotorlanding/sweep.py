@@ -58,8 +58,17 @@ from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
               "whirl_end_s", "whirl_persistence", "whirl_bearing",
-              "DE_max_contact_force_n", "NDE_max_contact_force_n", "DE_vertical_min_m", "DE_vertical_max_m",
+              # per bearing of the sweep's scenario, in its order (BEARING_FIELDS), then:
               "final_rotor_rpm", "energy_dissipated_j", "wall_s"]
+#: summary value of each bearing -> CSV column suffix (the column is <bearing>_<suffix>)
+BEARING_FIELDS = {"max_contact_force_n": lambda sb: sb.get("max_contact_force_n"),
+                  "vertical_min_m": lambda sb: sb.get("vertical_displacement_range_m", [None, None])[0],
+                  "vertical_max_m": lambda sb: sb.get("vertical_displacement_range_m", [None, None])[1]}
+
+
+def csv_fields(bearing_names) -> list[str]:
+    per = [f"{b}_{k}" for b in bearing_names for k in BEARING_FIELDS]
+    return CSV_FIELDS[:9] + per + CSV_FIELDS[9:]
 
 
 def load_sweep(path) -> dict:
@@ -315,13 +324,10 @@ def _failed_row(idx: int, error: str, out_dir, details: str | None = None) -> di
 def summary_row(s: dict) -> dict:
     b = s.get("bearings", {})
     w = landing_whirl(s["whirl"])  # also re-derives summaries of finished cases written before
-    return {"whirl_direction": w["direction"], "whirl_frequency_hz": w["frequency_hz"],
+    return {"_bearings": list(b), "whirl_direction": w["direction"], "whirl_frequency_hz": w["frequency_hz"],
             "whirl_onset_s": w["onset_s"], "whirl_end_s": w.get("end_s"), "whirl_persistence": w.get("persistence"),
             "whirl_bearing": w["bearing"] if w["direction"] != "none" else None,
-            "DE_max_contact_force_n": b.get("DE", {}).get("max_contact_force_n"),
-            "NDE_max_contact_force_n": b.get("NDE", {}).get("max_contact_force_n"),
-            "DE_vertical_min_m": b.get("DE", {}).get("vertical_displacement_range_m", [None, None])[0],
-            "DE_vertical_max_m": b.get("DE", {}).get("vertical_displacement_range_m", [None, None])[1],
+            **{f"{name}_{k}": get(sb) for name, sb in b.items() for k, get in BEARING_FIELDS.items()},
             "final_rotor_rpm": s["speeds"]["final_rotor_rpm"],
             "energy_dissipated_j": s["energy"]["dissipated_total_j"]}
 
@@ -433,7 +439,8 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     for r in table:
         r.update({k: sw["cases"][r["case"]][k] for k in sw["keys"]})
     with open(out / "sweep.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=["case"] + sw["keys"] + CSV_FIELDS[1:], extrasaction="ignore")
+        bearings = next((r["_bearings"] for r in table if r.get("_bearings")), ["DE", "NDE"])
+        w = csv.DictWriter(fh, fieldnames=["case"] + sw["keys"] + csv_fields(bearings)[1:], extrasaction="ignore")
         w.writeheader()
         for r in table:
             w.writerow(r)
