@@ -251,7 +251,38 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
             ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)
             hy += ky
             hz += kz
-        return [fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + wi, t_race,
-                -by + hy - co * voy, -bz + hz - co * voz + wo]
+        out = [fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + wi, t_race,
+               -by + hy - co * voy, -bz + hz - co * voz + wo]
+        for force, x in extra:
+            for i, fi in enumerate(force(x, q, v)):
+                out[i] += fi
+        return out
 
+    extra = [(m.force, L.extra) for m in registry_forces(spec, L)]
     return f
+
+
+def registry_forces(spec: LandingSpec, laws) -> list:
+    """The active mechanisms of the registry that bring their own solver hook (not compiled into
+    bearing_kernel) for one bearing's resolved laws."""
+    from .mechanisms import REGISTRY
+
+    return [m for m in REGISTRY if m.force is not None and m.active(spec, laws)]
+
+
+def mechanism_functions(m, laws):
+    """Exudyn (force, jacobian) user functions of a registry mechanism over BEARING_LOCAL; the
+    jacobian is None (Exudyn differentiates numerically) when the mechanism declares none."""
+    x, force_law, jac_law = laws.extra, m.force, m.jacobian
+
+    def force(mbs, t, item, q, q_t):
+        return list(force_law(x, q, q_t))
+
+    if jac_law is None:
+        return force, None
+
+    def jacobian(mbs, t, item, q, q_t, fq, fv):
+        Jq, Jv = jac_law(x, q, q_t)
+        return -(fq * np.asarray(Jq) + fv * np.asarray(Jv))
+
+    return force, jacobian

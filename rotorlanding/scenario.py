@@ -27,6 +27,7 @@ from pathlib import Path
 
 from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted, split_override
 from .errors import InputError
+from .mechanisms import extra_bearing_params, extra_effects
 from .rotor import Rotor, rotor_from_dict
 
 #: switchable effects and their defaults (True = on)
@@ -42,6 +43,7 @@ EFFECTS = {
     "worn_bearing_drag": False,      # load-independent drag torque of a worn catcher bearing (not in the paper)
     "unbalance": False,              # rotating unbalance force from [unbalance]
     "rotor_flexibility": True,       # keep the fixed-interface modes (false: rigid-rotor model)
+    **extra_effects(),               # switches of mechanisms outside the compiled kernel (mechanisms.py)
 }
 
 #: the two catcher bearings of the paper's rig; any other name of letters and digits works too
@@ -105,6 +107,8 @@ class Bearing:
     axial_face: bool            # this bearing takes the axial thrust on its face
     face_inner_radius: float    # m, r1 of the thrust-face annulus
     face_outer_radius: float    # m, r2
+    #: inputs of mechanisms outside the compiled kernel, key -> value (mechanisms.Param, SI)
+    extra: dict = field(default_factory=dict)
 
     @property
     def race_radius(self) -> float:
@@ -270,6 +274,7 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         axial_face=t.boolean("axial_face", False),
         face_inner_radius=t.number("face_inner_radius", 0.0, **nn),
         face_outer_radius=t.number("face_outer_radius", 0.0, **nn),
+        extra={p.key: t.number(p.key, p.default, **nn) for p in extra_bearing_params()},
     )
     from .rotor import MAX_DIMENSION
 
