@@ -415,6 +415,42 @@ REGISTRY: tuple[Mechanism, ...] = (
               doc="rotating unbalance"),
 )
 
+# --------------------------------------------------------------------------------------------
+# mechanisms outside the compiled kernel: the whole mechanism is its entry here (recipe in
+# docs/architecture.md)
+
+def _race_windage_force(x, q, v):
+    """Air and grease drag on the spinning inner race: the drag law of eq 6 (``windage_torque``)
+    with the race's own coefficients, acting on race_phi (BEARING_LOCAL index 6)."""
+    return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, windage_torque(v[6], x["race_windage_c1"], x["race_windage_c2"]), 0.0, 0.0)
+
+
+def _race_windage_jacobian(x, q, v):
+    jq = [[0.0] * 9 for _ in range(9)]
+    jv = [[0.0] * 9 for _ in range(9)]
+    jv[6][6] = -(x["race_windage_c1"] + 2.0 * x["race_windage_c2"] * abs(v[6]))
+    return jq, jv
+
+
+def _post_race_windage(ev: Evaluation, L) -> None:
+    w = ev.kin["wi"]
+    tw = np.array([windage_torque(wi, L.extra["race_windage_c1"], L.extra["race_windage_c2"]) for wi in w])
+    ev.out("race_windage_torque_nm", tw)
+    ev.dissipated("race_windage", -tw * np.asarray(w))
+
+
+REGISTRY += (
+    Mechanism("race_windage", "bearing", ("race_phi",), (windage_torque,), ("race_windage",), ("race_windage",),
+              outputs=(Output("race_windage_torque_nm", "N m", True, "air/grease drag torque on the inner race"),),
+              post=_post_race_windage,
+              active=lambda spec, L: L.extra["race_windage_c1"] > 0 or L.extra["race_windage_c2"] > 0,
+              doc="drag of the air and grease on the spinning inner race, eq 6's law on the race",
+              effect="race_windage", default_on=False,
+              params=(Param("race_windage_c1", "N m s", 0.0, "laminar drag coefficient of the inner race"),
+                      Param("race_windage_c2", "N m s^2", 0.0, "turbulent drag coefficient of the inner race")),
+              force=_race_windage_force, jacobian=_race_windage_jacobian),
+)
+
 #: series of the states themselves (not of a mechanism)
 STATE_OUTPUTS_BEARING = (
     Output("y_m", "m", True, "journal centre, y"), Output("z_m", "m", True, "journal centre, z"),
