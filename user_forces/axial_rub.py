@@ -202,6 +202,109 @@ def axial_rub(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, 
     return (-sc * sy, -sc * sz, -sc * (mi - dy * sz + dz * sy), sc * mi, sc * pw)
 
 
+_ZERO9 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+def axial_rub_slip_jacobian(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, f_axial,
+                            face_sign, mu_ax, v_reg, r1, r2):
+    """``axial_rub`` (the same quadrature: same points, same rounding of the forces) with the
+    forward-mode derivatives of its quadrature sums, for the analytic Jacobian.
+
+    Arguments as ``axial_rub``. With the slip field w = (cy0 - dom rho sin, cz0 + dom rho cos),
+    cy0 = dvy + Omega_r dz, cz0 = dvz - Omega_r dy, dom = Omega_r - Omega_i, the rub is
+    F_rotor = -sc (sy, sz), T_rotor = -sc (mi - dy sz + dz sy), T_race = sc mi, with sc =
+    mu_ax |F_ax| / sum(q) and (sy, sz, mi) sums over the patch. Returns (Fy_rotor, Fz_rotor,
+    T_rotor, T_race, sc, d) with d = d(sy, sz, mi)/d(cy0, cz0, dom) row-major (9 floats) at a fixed
+    contact patch; the chain rule to the caller's coordinates, the explicit d in T_rotor and the
+    patch's dependence on the axial approach A (which moves with dy, dz, delta_ax and the tilt) are
+    the caller's. Without contact everything is 0.
+    """
+    s = face_sign
+    a0 = delta_ax + s * (beta * dy - alpha * dz)
+    ac = -s * beta
+    as_ = s * alpha
+    kk = sqrt(ac * ac + as_ * as_)
+    th0 = atan2(as_, ac)
+    ra, rb, rc = r1, r2, r2
+    if kk * r2 > 1e-12 * abs(a0):
+        rstar = abs(a0) / kk
+        if r1 < rstar < r2:
+            rb = rstar
+            rc = rstar
+    elif a0 <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, _ZERO9
+    cy0 = dvy + omega_rotor * dz
+    cz0 = dvz - omega_rotor * dy
+    dom = omega_rotor - omega_race
+    vr2 = v_reg * v_reg
+    gs = sy = sz = mi = 0.0
+    # d(sy, sz, mi)/d(cy0, cz0, dom), row-major
+    d00 = d01 = d02 = d10 = d11 = d12 = d20 = d21 = d22 = 0.0
+    for ip in (0, 1):
+        if ip == 0:
+            lo, hi = ra, rb
+        else:
+            lo, hi = rc, r2
+        if hi <= lo:
+            continue
+        hh = 0.5 * (hi - lo)
+        mm = 0.5 * (hi + lo)
+        for xj, wj in _GL_R:
+            rho = mm + hh * xj
+            wr = hh * wj * rho
+            bb = kk * rho
+            full = a0 >= bb
+            if not full and a0 <= -bb:
+                continue
+            phi = 0.0
+            if not full:
+                phi = acos(-a0 / bb)
+            for k in range(N_THETA):
+                if full:
+                    c, sn = _CIRCLE[k]
+                    wq = wr * _W_CIRCLE
+                else:
+                    th = th0 + phi * _GL_ARC[k][0]
+                    c = cos(th)
+                    sn = sin(th)
+                    wq = wr * phi * _GL_ARC[k][1]
+                g = a0 + rho * (ac * c + as_ * sn)
+                if g <= 0.0:
+                    continue
+                q = wq * g
+                pcy = rho * c
+                pcz = rho * sn
+                wy = cy0 - dom * pcz
+                wz = cz0 + dom * pcy
+                m2 = wy * wy + wz * wz + vr2
+                a = q / sqrt(m2)
+                uy = wy * a
+                uz = wz * a
+                gs += q
+                sy += uy
+                sz += uz
+                mi += pcy * uz - pcz * uy
+                uyy = a * (1.0 - wy * wy / m2)
+                uyz = -a * wy * wz / m2
+                uzz = a * (1.0 - wz * wz / m2)
+                duy2 = -pcz * uyy + pcy * uyz
+                duz2 = -pcz * uyz + pcy * uzz
+                d00 += uyy
+                d10 += uyz
+                d20 += pcy * uyz - pcz * uyy
+                d01 += uyz
+                d11 += uzz
+                d21 += pcy * uzz - pcz * uyz
+                d02 += duy2
+                d12 += duz2
+                d22 += pcy * duz2 - pcz * duy2
+    if gs <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, _ZERO9
+    sc = mu_ax * abs(f_axial) / gs
+    return (-sc * sy, -sc * sz, -sc * (mi - dy * sz + dz * sy), sc * mi, sc,
+            (d00, d01, d02, d10, d11, d12, d20, d21, d22))
+
+
 def axial_rub_reference(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax,
                         f_axial, face_sign, mu_ax, v_reg, r1, r2, n_r=N_R_REF,
                         n_theta=N_THETA_REF):
