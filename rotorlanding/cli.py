@@ -133,21 +133,13 @@ def cmd_reduce(args) -> int:
 
 def _load_case(path: str, overrides):
     """A scenario TOML file, or a results.h5 whose stored scenario is re-run."""
-    from .scenario import load_scenario, scenario_from_dict
+    from .scenario import apply_overrides, load_scenario, scenario_from_dict
 
     if path.endswith(".h5"):
-
-        from .config import parse_value, set_dotted, split_override
         from .readers import read_results_guarded
 
         data = read_results_guarded(path, ("scenario",), field="scenario")["scenario"]
-        for item in overrides or []:
-            key, text = split_override(item)
-            try:
-                set_dotted(data, key, parse_value(text))
-            except InputError as err:
-                raise InputError(f"--set {key}", text, err.allowed) from None
-        return scenario_from_dict(data, source=path)
+        return scenario_from_dict(apply_overrides(data, overrides), source=path)
     return load_scenario(path, overrides)
 
 

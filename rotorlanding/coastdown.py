@@ -99,7 +99,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml, parse_value, set_dotted, split_override
+from .config import Table, load_toml
 from .errors import InputError
 from .bearing_kernel import contact_normal_forces
 from .mechanisms import dissipation_entries, rotor_force, series_units
@@ -163,7 +163,7 @@ def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
 def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, Coastdown]:
     """Read a coast-down scenario file (a landing scenario plus an optional ``[coastdown]``
     table), apply ``--set key=value`` overrides, validate both parts."""
-    from .scenario import EFFECTS
+    from .scenario import apply_overrides
 
     path = Path(path)
     if path.suffix == ".h5":
@@ -173,17 +173,7 @@ def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, 
             data = load_toml(path)
         except InputError as err:
             raise err.with_file(str(path)) from None
-    for item in overrides or []:
-        key, text = split_override(item)
-        if key.startswith("coastdown."):
-            if key[10:] not in FIELDS:
-                raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(FIELDS)}")
-            data.setdefault("coastdown", {})
-        try:
-            set_dotted(data, key, parse_value(text.strip()),
-                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
-        except InputError as err:
-            raise InputError(f"--set {key}", text.strip(), err.allowed) from None
+    apply_overrides(data, overrides, tables={"coastdown": FIELDS})
     cd_raw = data.pop("coastdown", None)
     scenario = scenario_from_dict(data, source=str(path))
     try:

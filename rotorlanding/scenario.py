@@ -577,12 +577,26 @@ def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scen
             data = deep_merge(data, load_toml(Path(extra)))
     except InputError as err:
         raise err.with_file(str(path)) from None
+    apply_overrides(data, overrides)
+    return scenario_from_dict(data, source=str(path))
+
+
+def apply_overrides(data: dict, overrides, *, tables: dict | None = None) -> dict:
+    """The one ``--set key=value`` parser (scenario files, a stored results.h5's scenario, coast-down
+    files): each item is set in the raw input ``data`` (in place; returned). A key must exist in
+    the input, except an effect switch (a known switch with its default) and a field of an
+    optional table named in ``tables`` (table -> its allowed fields, e.g. ``coastdown``), which
+    are created; the schema validation afterwards judges the value."""
     for item in overrides or []:
         key, text = split_override(item)
+        head, _, rest = key.partition(".")
+        if tables and head in tables:
+            if rest not in tables[head]:
+                raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(tables[head])}")
+            data.setdefault(head, {})
         try:
-            # effects may be absent from the file yet are known switches with defaults
-            set_dotted(data, key, parse_value(text),
-                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
+            set_dotted(data, key, parse_value(text), must_exist=not (head == "effects" and rest in EFFECTS),
+                       create_leaf=True)
         except InputError as err:
             raise InputError(f"--set {key}", text, err.allowed) from None
-    return scenario_from_dict(data, source=str(path))
+    return data
