@@ -40,7 +40,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -48,6 +47,7 @@ import numpy as np
 from .config import Table, load_toml, override_table, range_spec
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
+from .runner import reduction_cache, run_all
 from .validate import paper, paper_dir
 
 #: s, the onset change between steps h and h/2 that an ensemble may show without its noise
@@ -135,7 +135,7 @@ def _run(job):
         sc = load_scenario(paper_dir() / fname, sets)
         if step_factor != 1.0:
             sc = load_scenario(paper_dir() / fname, sets + [f"solver.step={sc.solver.step * step_factor!r}"])
-        spec, t, q, v, info = simulate(sc, progress=False)
+        spec, t, q, v, info = simulate(sc, progress=False, reduction=reduction_cache())
         s = summarize(spec, t, evaluate(spec, t, q, v))
         r = member_result(s)
         return i, case, {**r, "force_max_n": r["v_force_range_n"][1], "ok": info["complete"]}
@@ -190,11 +190,8 @@ def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
 
 def _run_all(jobs, workers):
     results: dict[int, dict] = {}
-    if workers > 1:
-        with ProcessPoolExecutor(workers) as ex:
-            it = list(ex.map(_run, jobs))
-    else:
-        it = list(map(_run, jobs))
+    # _run turns a failing design into its row; BLAS as before (runner.worker_setup says why)
+    it = run_all(_run, jobs, workers, failures="raise", blas_threads=None)
     members: dict[tuple, list] = {}
     for i, case, r in it:
         if "#" in case:  # "CASE#k": member k of CASE's ensemble

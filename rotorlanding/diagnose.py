@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,6 +33,7 @@ from .errors import InputError
 from .features import extract_features, gap_points
 from .measured import Measurement
 from .mechanisms import rotor_force
+from .runner import Pool, reduction_cache
 
 #: gaps below this are treated as noise: on clean data (the model against its own resampled,
 #: noisy output) the gap is 0.03-0.1, so a disagreement must exceed 3x that to be explained
@@ -61,7 +62,7 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
     from .scenario import load_scenario
 
     sc = load_scenario(scenario_path, overrides)
-    spec, t, q, v, info = simulate(sc, progress=False)
+    spec, t, q, v, info = simulate(sc, progress=False, reduction=reduction_cache())
     series = evaluate(spec, t, q, v)
     chans = {}
     for b in spec.bearings:
@@ -93,7 +94,7 @@ class _Simulator:
 
     def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str]):
         self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
-        self.pool = ProcessPoolExecutor(workers) if workers > 1 else None
+        self.pool = Pool(workers, blas_threads=None)  # BLAS as before (runner.worker_setup says why)
         self.count = 0
 
     def overrides(self, p: Point, extra: list[str]) -> list[str]:
@@ -103,7 +104,7 @@ class _Simulator:
         """Simulated features at every point for each model variant (all submitted at once)."""
         jobs = [(self.scenario_path, self.overrides(p, extra), self.clearance) for extra in extras for p in self.points]
         self.count += len(jobs)
-        out = [_sim_job(j) for j in jobs] if self.pool is None else list(self.pool.map(_sim_job, jobs))
+        out = self.pool.map(_sim_job, jobs, failures="raise")  # _sim_job turns a failed trial into its row
         n = len(self.points)
         return [out[i * n:(i + 1) * n] for i in range(len(extras))]
 
@@ -122,8 +123,7 @@ class _Simulator:
         return self.gaps([extra])[0]
 
     def close(self):
-        if self.pool is not None:
-            self.pool.shutdown()
+        self.pool.close()
 
 
 def _param_overrides(param, x):

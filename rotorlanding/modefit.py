@@ -170,7 +170,7 @@ def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
         fit = (f[:n_fit] - targets[:n_fit]) / targets[:n_fit]
         return float(np.sum(fit ** 2) + 100.0 * np.sum(excess))
 
-    from .sweep import limit_blas_threads
+    from .runner import limit_blas_threads
 
     # single-threaded BLAS: faster for these small eigenproblems, and the float results (hence
     # the search path) do not depend on the machine's thread count

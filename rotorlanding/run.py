@@ -60,9 +60,9 @@ class Progress:
         self.stream.flush()
 
 
-def simulate(scenario: Scenario, *, progress: bool | None = None):
-    """Solve the scenario; returns (spec, t, q, v, info)."""
-    spec = build_spec(scenario)
+def simulate(scenario: Scenario, *, progress: bool | None = None, reduction=None):
+    """Solve the scenario; returns (spec, t, q, v, info). ``reduction``: see ``landing.build_spec``."""
+    spec = build_spec(scenario, reduction=reduction)
     model = build_exudyn(spec)
     settings = SolverSettings.from_spec(spec)
     n_steps = scenario.t_end / settings.step
@@ -82,7 +82,8 @@ def simulate(scenario: Scenario, *, progress: bool | None = None):
     return spec, t, q, v, stats
 
 
-def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True) -> dict:
+def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True,
+                 reduction=None) -> dict:
     """Simulate and write results.h5, summary.json and the figures into ``out_dir``."""
     out = check_out_dir(Path(out_dir))  # before the solve: a bad --out is found at once
     try:
@@ -91,7 +92,7 @@ def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, p
     except OSError as exc:
         raise WriteError(out / "summary.json", exc) from None
     fault("run-started")
-    spec, t, q, v, stats = simulate(scenario, progress=progress)
+    spec, t, q, v, stats = simulate(scenario, progress=progress, reduction=reduction)
     try:
         return _write(scenario, out, spec, t, q, v, stats, plots)
     except OSError as exc:
