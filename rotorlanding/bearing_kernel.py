@@ -34,8 +34,7 @@ import numba
 import numpy as np
 
 from user_forces.axial import axial_force as _axial_force_py
-from user_forces.axial_rub import axial_rub as _axial_rub_py
-from user_forces.axial_rub import axial_rub_slip_jacobian as _axial_rub_jac_py
+from user_forces.axial_rub import axial_rub_quadrature as _axial_rub_q_py
 from user_forces.ball_bearing import ball_force as _ball_force_py
 from user_forces.ball_bearing import harris_palmgren_with_derivatives as _hp_law_py
 from user_forces.ball_bearing import worn_drag_development as _worn_dev_py
@@ -50,8 +49,7 @@ from .params import OMEGA_REG_HP
 _njit = numba.njit(cache=True, fastmath=False)
 _radial_contact = _njit(_radial_contact_py)
 _axial_force = _njit(_axial_force_py)
-_axial_rub = _njit(_axial_rub_py)
-_axial_rub_jac = _njit(_axial_rub_jac_py)
+_axial_rub_q = _njit(_axial_rub_q_py)
 _worn_drag = _njit(_worn_drag_py)
 _worn_dev = _njit(_worn_dev_py)
 _ball_force = _njit(_ball_force_py)
@@ -112,19 +110,21 @@ def _axial_force_d(x, xd, P):
 
 @_njit
 def _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P):
-    return _axial_rub(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
-                      1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2])
+    r = _axial_rub_q(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
+                     1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2], False)
+    return r[0], r[1], r[2], r[3], r[4]
 
 
 @_njit
 def _rub_velocity_jac(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P, C):
     """Axial rub with its derivatives through the slip field, d(Fy, Fz, T_rot, T_race)/d(dy, dz,
     dvy, dvz, om, omi) at a fixed contact patch, added into C[:, 0:6]: the quadrature sums and
-    their derivatives are user_forces.axial_rub_slip_jacobian's, the chain rule is here; the
+    their derivatives are user_forces.axial_rub_quadrature's, the chain rule is here; the
     patch's dependence on the axial approach a0 (and through it on dy, dz, x) is added by the
     caller. Returns (Fy, Fz, T_rot, T_race)."""
-    fy, fz, trot, trace, sc, D = _axial_rub_jac(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
-                                                1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2])
+    fy, fz, trot, trace, _, sc, D = _axial_rub_q(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
+                                                 1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2],
+                                                 True)
     if sc == 0.0:
         return 0.0, 0.0, 0.0, 0.0
     # (cy0, cz0, dom) w.r.t. inputs (dy, dz, dvy, dvz, om, omi)

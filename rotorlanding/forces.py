@@ -26,6 +26,7 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.axial_rub import axial_rub_quadrature
 from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
@@ -43,7 +44,14 @@ def _compile_axial_rub():
         import numba
     except ImportError:  # pragma: no cover
         return _axial_rub_py
-    return numba.njit(cache=True)(_axial_rub_py)
+    quadrature = numba.njit(cache=True)(axial_rub_quadrature)
+
+    @numba.njit(cache=True)
+    def compiled(dy, dz, dvy, dvz, om, omi, alpha, beta, delta_ax, f_ax, sign, mu_ax, v_reg, r1, r2):
+        r = quadrature(dy, dz, dvy, dvz, om, omi, alpha, beta, delta_ax, f_ax, sign, mu_ax, v_reg, r1, r2, False)
+        return r[0], r[1], r[2], r[3], r[4]
+
+    return compiled
 
 
 axial_rub = _compile_axial_rub()
