@@ -33,6 +33,7 @@ import math
 import numba
 import numpy as np
 
+from user_forces.amb import amb_force as _amb_py
 from user_forces.axial import axial_force as _axial_force_py
 from user_forces.axial_rub import axial_rub_quadrature as _axial_rub_q_py
 from user_forces.ball_bearing import ball_force as _ball_force_py
@@ -42,20 +43,19 @@ from user_forces.ball_bearing import worn_drag_torque as _worn_drag_py
 from user_forces.radial_contact import radial_contact as _radial_contact_py
 from user_forces.ribbon import outer_race_friction as _outer_race_friction_py
 from user_forces.ribbon import ribbon_force as _ribbon_force_py
+from user_forces.spin import drive_torque as _drive_py
+from user_forces.spin import windage_torque as _windage_py
+from user_forces.spin import windage_torque_derivative as _windage_d_py
 
 from .landing import G_ACC, BearingSpec, LandingSpec
 from .params import OMEGA_REG_HP
 
 _njit = numba.njit(cache=True, fastmath=False)
-_radial_contact = _njit(_radial_contact_py)
-_axial_force = _njit(_axial_force_py)
-_axial_rub_q = _njit(_axial_rub_q_py)
-_worn_drag = _njit(_worn_drag_py)
-_worn_dev = _njit(_worn_dev_py)
-_ball_force = _njit(_ball_force_py)
-_hp_law = _njit(_hp_law_py)
-_ribbon_force = _njit(_ribbon_force_py)
-_outer_race_friction = _njit(_outer_race_friction_py)
+# every law the kernel evaluates, compiled unchanged from user_forces (no law is written here)
+(_radial_contact, _axial_force, _axial_rub_q, _worn_drag, _worn_dev, _ball_force, _hp_law, _ribbon_force,
+ _outer_race_friction, _windage, _windage_d, _drive, _amb) = map(_njit, (
+    _radial_contact_py, _axial_force_py, _axial_rub_q_py, _worn_drag_py, _worn_dev_py, _ball_force_py, _hp_law_py,
+    _ribbon_force_py, _outer_race_friction_py, _windage_py, _windage_d_py, _drive_py, _amb_py))
 
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
@@ -506,15 +506,15 @@ def landing_rhs(PB, IDX, R, q, v, tilts, thrust, amb_axial, out):
         om = v[i_th]
         tq = 0.0
         if R[R_WIND] != 0.0:
-            tq -= (R[R_CW1] + R[R_CW2] * abs(om)) * om
+            tq += _windage(om, R[R_CW1], R[R_CW2])
         if R[R_DRIVE] != 0.0:
-            tq += R[R_GAIN] * (R[R_OMEGA0] - om)
+            tq += _drive(om, R[R_GAIN], R[R_OMEGA0])
         out[i_th] += tq
         x = q[i_ax]
         xd = v[i_ax]
         fa = thrust + _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
         if amb_axial:
-            fa += -thrust - R[R_KAXAMB] * x - R[R_CAXAMB] * xd
+            fa += _amb(x, xd, -thrust, R[R_KAXAMB], R[R_CAXAMB])
         out[i_ax] += fa
     return out
 
@@ -541,7 +541,7 @@ def landing_jacobian(PB, IDX, R, q, v, tilts, amb_axial, fq, fv, out):
         om = v[i_th]
         dt = 0.0
         if R[R_WIND] != 0.0:
-            dt -= R[R_CW1] + 2.0 * R[R_CW2] * abs(om)
+            dt += _windage_d(om, R[R_CW1], R[R_CW2])
         if R[R_DRIVE] != 0.0:
             dt -= R[R_GAIN]
         out[i_th, i_th] -= fv * dt

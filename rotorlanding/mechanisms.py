@@ -45,7 +45,8 @@ from user_forces.axial_rub import axial_rub
 from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
-from user_forces.spin import windage_torque
+from user_forces.amb import amb_force, unbalance_force
+from user_forces.spin import drive_torque, windage_torque, windage_torque_derivative
 
 from .params import OMEGA_REG_HP
 from .timoshenko import GRAVITY
@@ -179,12 +180,13 @@ def _post_amb(ev: Evaluation, rl) -> None:
     amb_on = (t < sc.amb.t_drop) | (not sc.amb.drop_radial)
     for iy, iz in spec.amb_rows:
         for i in (iy, iz):
-            f = -spec.f_gravity[i] - sc.amb.stiffness * q[:, i] - sc.amb.damping * v[:, i]
+            f = amb_force(q[:, i], v[:, i], -spec.f_gravity[i], sc.amb.stiffness, sc.amb.damping)
             ev.work("amb", np.where(amb_on, f * v[:, i], 0.0))
     x, xd = q[:, spec.i_axial], v[:, spec.i_axial]
     thrust = np.array([spec.thrust(ti) for ti in t])
     ax_on = (t < sc.amb.t_drop) | (not sc.amb.drop_axial)
-    ev.work("amb", np.where(ax_on, (-thrust - sc.amb.axial_stiffness * x - sc.amb.axial_damping * xd) * xd, 0.0))
+    f = amb_force(x, xd, -thrust, sc.amb.axial_stiffness, sc.amb.axial_damping)
+    ev.work("amb", np.where(ax_on, f * xd, 0.0))
 
 
 def _post_thrust(ev: Evaluation, rl) -> None:
@@ -195,7 +197,7 @@ def _post_thrust(ev: Evaluation, rl) -> None:
 def _post_drive(ev: Evaluation, rl) -> None:
     """Constant-speed drive: T = gain (omega0 - Omega), its work T Omega."""
     omega = ev.v[:, ev.spec.i_theta]
-    ev.work("drive", rl.drive_gain * (rl.omega0 - omega) * omega)
+    ev.work("drive", drive_torque(omega, rl.drive_gain, rl.omega0) * omega)
 
 
 def _post_unbalance(ev: Evaluation, rl) -> None:
@@ -206,8 +208,8 @@ def _post_unbalance(ev: Evaluation, rl) -> None:
     vl = ev.v[:, :spec.n_lat]
     omega = ev.v[:, spec.i_theta]
     ang = ev.q[:, spec.i_theta] + math.radians(sc.unbalance.phase_deg)
-    fu = sc.unbalance.magnitude * omega**2
-    ev.work("unbalance", fu * (np.cos(ang) * (vl @ ry) + np.sin(ang) * (vl @ rz)))
+    f = np.array([unbalance_force(w, a, sc.unbalance.magnitude) for w, a in zip(omega.tolist(), ang.tolist())])
+    ev.work("unbalance", f[:, 0] * (vl @ ry) + f[:, 1] * (vl @ rz))
 
 
 # --------------------------------------------------------------------------------------------
@@ -428,7 +430,7 @@ def _race_windage_force(x, q, v):
 def _race_windage_jacobian(x, q, v):
     jq = [[0.0] * 9 for _ in range(9)]
     jv = [[0.0] * 9 for _ in range(9)]
-    jv[6][6] = -(x["race_windage_c1"] + 2.0 * x["race_windage_c2"] * abs(v[6]))
+    jv[6][6] = windage_torque_derivative(v[6], x["race_windage_c1"], x["race_windage_c2"])
     return jq, jv
 
 
