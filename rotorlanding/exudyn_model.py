@@ -336,9 +336,10 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
                                             forceVector=[0.0] * n, forceUserFunction=bearing_uf, **extra))
 
     # mechanisms of the registry outside the compiled kernel: one connector each per bearing where
-    # active (an inactive one adds nothing, so the default model is unchanged)
+    # active (an inactive one adds nothing, so the default model is unchanged); the plain-Python
+    # bearing connectors (analytic_jacobian=False) already include them (forces.bearing_forces)
     for b, (race, outer) in zip(spec.bearings, race_outer):
-        for m in registry_forces(spec, b.laws):
+        for m in (registry_forces(spec, b.laws) if analytic_jacobian else ()):
             fm, jm = mechanism_functions(m, b.laws)
             n = len(BEARING_LOCAL)
             extra = {"jacobianUserFunction": jm} if jm is not None else {}

@@ -32,7 +32,7 @@ def test_off_by_default_and_then_absent():
     assert series_units(spec.bearing_names)["dissipated_race_windage_j"] == "J"
 
 
-def _spin_down(c1: float, c2: float):
+def _spin_down(c1: float, c2: float, analytic_jacobian: bool = True):
     """A levitated rotor (AMBs hold it past T_END, no contact), ball drag off: the only torque on
     each inner race is its windage."""
     # the scenario ends after the drop (it must); the test solves only [0, T_END], before it
@@ -43,7 +43,7 @@ def _spin_down(c1: float, c2: float):
     q0, v0 = spec.initial_state()
     for b in spec.bearings:
         v0[b.i_race + 2] = W0
-    model = build_exudyn(spec, q0, v0)
+    model = build_exudyn(spec, q0, v0, analytic_jacobian=analytic_jacobian)
     ok, msg, _ = solve(model, 0.0, T_END, SolverSettings.from_spec(spec))
     assert ok, msg
     t, q, v = collect(model)
@@ -79,3 +79,14 @@ def test_inner_race_spins_down_as_the_closed_form(quadratic):
     assert booked == pytest.approx(lost, rel=1e-4)
     assert energy_summary(s)["dissipated_j"]["race_windage"] == booked
     assert math.isfinite(energy_summary(s)["balance_error_relative"])
+
+
+def test_plain_python_model_applies_it_once():
+    """The plain-Python bearing connectors (analytic_jacobian=False) carry the mechanism in their
+    closure and get no second connector: the linear spin-down is the closed form there too."""
+    spec0 = build_spec(load_scenario(NO_WHIRL))
+    c1 = 20.0 * spec0.bearings[0].laws.inner_race_inertia
+    spec, t, q, v = _spin_down(c1, 0.0, analytic_jacobian=False)
+    for b in spec.bearings:
+        w_exact = W0 * np.exp(-c1 / b.laws.inner_race_inertia * t)
+        np.testing.assert_allclose(v[:, b.i_race + 2], w_exact, rtol=5e-5)
