@@ -126,6 +126,48 @@ class _Simulator:
         self.pool.close()
 
 
+def measured_for_diagnosis(scenario_path, measured_path, sets: list[str], time_offset_s: float | None = None):
+    """What ``rotorlanding diagnose`` compares the model with: (clearance of the scenario's DE
+    bearing (else its first), the measurement, its features: one ``Point`` per operating point of a
+    points file, a feature table, or features extracted from a record after its detected drop).
+    Every bad input is one InputError naming the file."""
+    from .features import features_from_table
+    from .measured import detect_drop, load_measurement
+    from .scenario import load_scenario
+
+    sc = load_scenario(scenario_path, sets)
+    clearance = sc.bearings["DE"].clearance if "DE" in sc.bearings else next(iter(sc.bearings.values())).clearance
+    m = load_measurement(measured_path, time_offset_s=time_offset_s or 0.0)
+    if m.points:
+        meas = []
+        for p in m.points:
+            try:
+                load_scenario(scenario_path, sets + p.overrides)
+            except InputError as err:
+                raise InputError(f"points.{p.name}.set", " ".join(p.overrides),
+                                 f"not valid for {scenario_path}: {err.field} = {err.value!r}: {err.allowed}",
+                                 file=measured_path) from None
+            meas.append(Point(p.name, p.overrides, features_from_table(p.features, clearance,
+                                                                        where=f"points.{p.name}.features",
+                                                                        file=measured_path)))
+    elif m.features:
+        meas = features_from_table(m.features, clearance, file=measured_path)
+    else:
+        for name, (_, v) in m.channels.items():
+            if name.endswith("_m") and name != "axial_m" and np.nanmax(np.abs(v)) > 5 * clearance:
+                raise InputError(name, f"{np.nanmax(np.abs(v)):.3g} m", f"journal displacements beyond 5x the model's "
+                                 f"clearance ({clearance:g} m): data from a different rotor, or not in metres?",
+                                 file=measured_path)
+        t_drop = detect_drop(m, clearance) if time_offset_s is None else 0.0
+        m = m.shifted(t_drop or 0.0)
+        span = max(float(t[-1]) for t, _ in m.channels.values())
+        if span < 0.1:
+            raise InputError("time_s", f"{span:.3g} s after the drop", "record too short: need >= 0.1 s after the drop",
+                             file=measured_path)
+        meas = extract_features(m, clearance=clearance, t_drop=0.0)
+    return clearance, m, meas
+
+
 def _param_overrides(param, x):
     return [f"{k}={x!r}" for k in param.keys]
 
