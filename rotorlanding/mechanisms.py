@@ -81,6 +81,9 @@ def _always(spec, laws) -> bool:
 
 @dataclass(frozen=True)
 class Mechanism:
+    """One physical mechanism: what acts, where, when, its energy entries and its outputs (the
+    module docstring says who reads which field)."""
+
     name: str
     scope: str                          # "rotor" or "bearing"
     coordinates: tuple[str, ...]        # bearing: forces.BEARING_LOCAL names; rotor: landing coordinate kinds
@@ -103,8 +106,9 @@ class Mechanism:
 @dataclass
 class Evaluation:
     """What a ``post`` hook reads and writes. Per-sample quantities are Python lists (the laws
-    take plain floats); sums go through :meth:`add` so every contribution lands in the same
-    element order as one hand-written loop would put it."""
+    take plain floats); contributions are added (``out``, ``dissipated``, ``work``, ``ekin``,
+    ``epot``) in registry order, so every element gets its terms in the order one hand-written loop
+    over the bearings would add them (which keeps the series bit for bit those of that loop)."""
 
     spec: object
     t: np.ndarray
