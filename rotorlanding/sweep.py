@@ -48,11 +48,9 @@ import time
 import traceback
 from pathlib import Path
 
-import numpy as np
-
-from .config import Table, load_toml, override_table, range_spec, value_list
+from .config import override_table, range_spec, sample_ranges, study_file, value_list
 from .errors import InputError
-from .runner import ReductionCache, executor, limit_blas_threads, reduction_cache, worker_setup  # noqa: F401
+from .runner import ReductionCache, executor, reduction_cache, worker_setup
 from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
@@ -71,10 +69,7 @@ def csv_fields(bearing_names) -> list[str]:
 
 
 def load_sweep(path) -> dict:
-    path = Path(path)
-    data = load_toml(path)
-    try:
-        t = Table(data, "")
+    with study_file(path) as (path, t):
         base = path.parent / t.string("scenario")
         if not base.is_file():
             raise InputError("scenario", str(base), "file not found")
@@ -100,17 +95,14 @@ def load_sweep(path) -> dict:
             if not isinstance(ranges, dict) or not ranges:
                 raise InputError("ranges", ranges, "give at least one key = {min, max}")
             n = t.integer("samples", 16)
-            rng = np.random.default_rng(t.integer("seed", 1, minimum=0))
+            seed = t.integer("seed", 1, minimum=0)
             keys = list(ranges)
             for k in keys:
                 range_spec(ranges[k], f"ranges.{k}")
-            for _ in range(n):
-                cases.append({k: float(rng.uniform(ranges[k]["min"], ranges[k]["max"])) for k in keys})
+            cases = sample_ranges(ranges, n, seed)
         t.raw("grid" if mode == "monte_carlo" else "ranges", None)
         t.finish()
         _check_cases(base, fixed, cases)
-    except InputError as err:
-        raise err.with_file(str(path)) from None
     return {"base": base, "mode": mode, "keys": keys, "fixed": fixed, "cases": cases, "plots": plots}
 
 
