@@ -104,3 +104,16 @@ def test_compiled_normal_force_is_the_radial_contact_law(forward):
     dist = math.hypot(dy, dz)
     rate = (dy * (v[k, s] - v[k, r]) + dz * (v[k, s + 1] - v[k, r + 1])) / dist
     assert fn[0][k] == pytest.approx((dist - L.clearance) ** L.exponent * (L.k_hertz + L.k_visc * rate), rel=1e-12)
+
+
+def test_results_file_carries_the_schema_units(tmp_path):
+    import h5py
+
+    from rotorlanding.run import run_scenario
+
+    sc = load_scenario(ROOT / "scenarios" / "paper" / "no_whirl_landing.toml", ["operating.t_end=0.01"])
+    run_scenario(sc, tmp_path, progress=False, plots=False)
+    units = mech.series_units(list(sc.bearings))
+    with h5py.File(tmp_path / "results.h5") as h5:
+        stored = {k: h5["series"][k].attrs["unit"] for k in h5["series"]}
+    assert stored == units
