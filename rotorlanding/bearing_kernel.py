@@ -9,8 +9,10 @@ the 9 x 9 derivatives w.r.t. the local coordinates and velocities in one call:
 - radial contact, balls, Harris-Palmgren drag, ribbon, outer-race Coulomb friction, axial
   force: analytic derivatives of the plain-float laws (chain rule through the local
   kinematics d = station - race, r = race - outer);
-- axial rub (a 72-point quadrature): central differences of the compiled law w.r.t. its 7
-  kinematic inputs inside the kernel (f_axial enters linearly: exact), i.e. one Python call.
+- axial rub (a 72-point quadrature): the derivatives through the slip field come with the
+  quadrature from ``user_forces.axial_rub.axial_rub_slip_jacobian`` (forward mode, same points);
+  the contact patch's motion with the axial approach by a central difference of the compiled law;
+  f_axial enters linearly (exact). One Python call.
 
 The rotor tilt at the axial face comes from a holder updated once per step (as in
 ``bearing_forces``) and is a parameter here, not a coordinate.
@@ -31,9 +33,9 @@ import math
 import numba
 import numpy as np
 
+from user_forces.amb import amb_force as _amb_py
 from user_forces.axial import axial_force as _axial_force_py
-from user_forces import axial_rub as _axial_rub_mod
-from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.axial_rub import axial_rub_quadrature as _axial_rub_q_py
 from user_forces.ball_bearing import ball_force as _ball_force_py
 from user_forces.ball_bearing import harris_palmgren_with_derivatives as _hp_law_py
 from user_forces.ball_bearing import worn_drag_development as _worn_dev_py
@@ -42,21 +44,20 @@ from user_forces.ball_bearing import worn_friction_with_derivatives as _worn_fr_
 from user_forces.radial_contact import radial_contact as _radial_contact_py
 from user_forces.ribbon import outer_race_friction as _outer_race_friction_py
 from user_forces.ribbon import ribbon_force as _ribbon_force_py
+from user_forces.spin import drive_torque as _drive_py
+from user_forces.spin import windage_torque as _windage_py
+from user_forces.spin import windage_torque_derivative as _windage_d_py
 
 from .landing import G_ACC, BearingSpec, LandingSpec
 from .params import OMEGA_REG_HP
 
 _njit = numba.njit(cache=True, fastmath=False)
-_radial_contact = _njit(_radial_contact_py)
-_axial_force = _njit(_axial_force_py)
-_axial_rub = _njit(_axial_rub_py)
-_worn_drag = _njit(_worn_drag_py)
-_worn_dev = _njit(_worn_dev_py)
-_worn_fr_law = _njit(_worn_fr_law_py)
-_ball_force = _njit(_ball_force_py)
-_hp_law = _njit(_hp_law_py)
-_ribbon_force = _njit(_ribbon_force_py)
-_outer_race_friction = _njit(_outer_race_friction_py)
+# every law the kernel evaluates, compiled unchanged from user_forces (no law is written here)
+(_radial_contact, _axial_force, _axial_rub_q, _worn_drag, _worn_dev, _worn_fr_law, _ball_force, _hp_law,
+ _ribbon_force, _outer_race_friction, _windage, _windage_d, _drive, _amb) = map(_njit, (
+    _radial_contact_py, _axial_force_py, _axial_rub_q_py, _worn_drag_py, _worn_dev_py, _worn_fr_law_py,
+    _ball_force_py, _hp_law_py, _ribbon_force_py, _outer_race_friction_py, _windage_py, _windage_d_py, _drive_py,
+    _amb_py))
 
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
@@ -119,118 +120,23 @@ def _axial_force_d(x, xd, P):
 
 @_njit
 def _rub(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P):
-    return _axial_rub(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
-                      1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2])
-
-
-_GL_R = np.array(_axial_rub_mod._GL_R)
-_GL_ARC = np.array(_axial_rub_mod._GL_ARC)
-_CIRCLE = np.array(_axial_rub_mod._CIRCLE)
-_W_CIRCLE = _axial_rub_mod._W_CIRCLE
+    r = _axial_rub_q(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
+                     1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2], False)
+    return r[0], r[1], r[2], r[3], r[4]
 
 
 @_njit
 def _rub_velocity_jac(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P, C):
-    """Axial rub (the quadrature of user_forces.axial_rub, same points) with forward-mode
-    derivatives w.r.t. the slip inputs: adds d(Fy, Fz, T_rot, T_race)/d(dy, dz, dvy, dvz, om, omi)
-    at fixed contact patch into C[:, 0:6]; the patch's dependence on the axial approach a0 (and
-    through it on dy, dz, x) is added by the caller. Returns (Fy, Fz, T_rot, T_race)."""
-    s = 1.0 if x >= 0 else -1.0
-    alpha = ta
-    beta = tb
-    a0 = abs(x) - P[P_CLAX] + s * (beta * dy - alpha * dz)
-    ac = -s * beta
-    as_ = s * alpha
-    kk = math.sqrt(ac * ac + as_ * as_)
-    th0 = math.atan2(as_, ac)
-    r1 = P[P_R1]
-    r2 = P[P_R2]
-    ra, rb, rc = r1, r2, r2
-    if kk * r2 > 1e-12 * abs(a0):
-        rstar = abs(a0) / kk
-        if r1 < rstar < r2:
-            rb = rstar
-            rc = rstar
-    elif a0 <= 0.0:
+    """Axial rub with its derivatives through the slip field, d(Fy, Fz, T_rot, T_race)/d(dy, dz,
+    dvy, dvz, om, omi) at a fixed contact patch, added into C[:, 0:6]: the quadrature sums and
+    their derivatives are user_forces.axial_rub_quadrature's, the chain rule is here; the
+    patch's dependence on the axial approach a0 (and through it on dy, dz, x) is added by the
+    caller. Returns (Fy, Fz, T_rot, T_race)."""
+    fy, fz, trot, trace, _, sc, D = _axial_rub_q(dy, dz, dvy, dvz, om, omi, ta, tb, abs(x) - P[P_CLAX], f_ax,
+                                                 1.0 if x >= 0 else -1.0, P[P_MUAX], P[P_VREGAX], P[P_R1], P[P_R2],
+                                                 True)
+    if sc == 0.0:
         return 0.0, 0.0, 0.0, 0.0
-    cy0 = dvy + om * dz
-    cz0 = dvz - om * dy
-    dom = om - omi
-    vr = P[P_VREGAX]
-    vr2 = vr * vr
-    gs = 0.0
-    sy = 0.0
-    sz = 0.0
-    mi = 0.0
-    # d(sy, sz, mi)/d(cy0, cz0, dom)
-    D = np.zeros((3, 3))
-    for ip in range(2):
-        if ip == 0:
-            lo, hi = ra, rb
-        else:
-            lo, hi = rc, r2
-        if hi <= lo:
-            continue
-        hh = 0.5 * (hi - lo)
-        mm = 0.5 * (hi + lo)
-        for jr in range(_GL_R.shape[0]):
-            rho = mm + hh * _GL_R[jr, 0]
-            wr = hh * _GL_R[jr, 1] * rho
-            bb = kk * rho
-            full = a0 >= bb
-            if not full and a0 <= -bb:
-                continue
-            phi = 0.0
-            if not full:
-                phi = math.acos(-a0 / bb)
-            npts = _CIRCLE.shape[0] if full else _GL_ARC.shape[0]
-            for k in range(npts):
-                if full:
-                    c = _CIRCLE[k, 0]
-                    sn = _CIRCLE[k, 1]
-                    wq = wr * _W_CIRCLE
-                else:
-                    th = th0 + phi * _GL_ARC[k, 0]
-                    c = math.cos(th)
-                    sn = math.sin(th)
-                    wq = wr * phi * _GL_ARC[k, 1]
-                g = a0 + rho * (ac * c + as_ * sn)
-                if g <= 0.0:
-                    continue
-                q = wq * g
-                pcy = rho * c
-                pcz = rho * sn
-                wy = cy0 - dom * pcz
-                wz = cz0 + dom * pcy
-                m2 = wy * wy + wz * wz + vr2
-                m = math.sqrt(m2)
-                A = q / m
-                uy = wy * A
-                uz = wz * A
-                gs += q
-                sy += uy
-                sz += uz
-                mi += pcy * uz - pcz * uy
-                uyy = A * (1.0 - wy * wy / m2)
-                uyz = -A * wy * wz / m2
-                uzz = A * (1.0 - wz * wz / m2)
-                # columns: cy0, cz0, dom
-                duy0, duz0 = uyy, uyz
-                duy1, duz1 = uyz, uzz
-                duy2 = -pcz * uyy + pcy * uyz
-                duz2 = -pcz * uyz + pcy * uzz
-                D[0, 0] += duy0
-                D[1, 0] += duz0
-                D[2, 0] += pcy * duz0 - pcz * duy0
-                D[0, 1] += duy1
-                D[1, 1] += duz1
-                D[2, 1] += pcy * duz1 - pcz * duy1
-                D[0, 2] += duy2
-                D[1, 2] += duz2
-                D[2, 2] += pcy * duz2 - pcz * duy2
-    if gs <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0
-    sc = P[P_MUAX] * abs(f_ax) / gs
     # (cy0, cz0, dom) w.r.t. inputs (dy, dz, dvy, dvz, om, omi)
     E = np.zeros((3, 6))
     E[1, 0] = -om
@@ -242,17 +148,17 @@ def _rub_velocity_jac(dy, dz, dvy, dvz, om, omi, ta, tb, x, f_ax, P, C):
     E[2, 4] = 1.0
     E[2, 5] = -1.0
     for j in range(6):
-        dsy = D[0, 0] * E[0, j] + D[0, 1] * E[1, j] + D[0, 2] * E[2, j]
-        dsz = D[1, 0] * E[0, j] + D[1, 1] * E[1, j] + D[1, 2] * E[2, j]
-        dmi = D[2, 0] * E[0, j] + D[2, 1] * E[1, j] + D[2, 2] * E[2, j]
+        dsy = D[0] * E[0, j] + D[1] * E[1, j] + D[2] * E[2, j]
+        dsz = D[3] * E[0, j] + D[4] * E[1, j] + D[5] * E[2, j]
+        dmi = D[6] * E[0, j] + D[7] * E[1, j] + D[8] * E[2, j]
         C[0, j] += -sc * dsy
         C[1, j] += -sc * dsz
         C[2, j] += -sc * (dmi - dy * dsz + dz * dsy)
         C[3, j] += sc * dmi
-    # explicit d and dz in T_rot = -sc (mi - dy sz + dz sy)
-    C[2, 0] += sc * sz
-    C[2, 1] += -sc * sy
-    return -sc * sy, -sc * sz, -sc * (mi - dy * sz + dz * sy), sc * mi
+    # explicit d in T_rot = -sc (mi - dy sz + dz sy): -fz = sc sz, fy = -sc sy
+    C[2, 0] += -fz
+    C[2, 1] += fy
+    return fy, fz, trot, trace
 
 
 @_njit
@@ -556,6 +462,28 @@ def bearing_functions(spec: LandingSpec, b: BearingSpec, tilt: list | None = Non
     return force, jacobian, P
 
 
+@_njit
+def _normal_forces(P, dy, dz, dvy, dvz):
+    out = np.zeros(dy.shape[0])
+    for k in range(dy.shape[0]):
+        # F_N does not depend on the spins or the friction coefficient (zeros here)
+        out[k] = _radial_contact(dy[k], dz[k], dvy[k], dvz[k], 0.0, 0.0, P[P_CL], P[P_KH], P[P_EX], P[P_KV], 0.0,
+                                 P[P_VREG], P[P_RR], P[P_RI])[4]
+    return out
+
+
+def contact_normal_forces(spec: LandingSpec, q: np.ndarray, v: np.ndarray) -> list[np.ndarray]:
+    """Contact normal force F_N (eq 15) of each bearing at every stored sample: the compiled
+    ``user_forces.radial_contact`` law over the samples (the coast-down's decimation reads it at
+    the full output rate, where a Python call per sample would cost ~5 % of the solve)."""
+    out = []
+    for b in spec.bearings:
+        s, r = b.i_station, b.i_race
+        out.append(_normal_forces(bearing_parameters(spec, b), q[:, s] - q[:, r], q[:, s + 1] - q[:, r + 1],
+                                  v[:, s] - v[:, r], v[:, s + 1] - v[:, r + 1]))
+    return out
+
+
 # ---------------------------------------------------------------------------------------------
 # All bearings (+ the spin/axial rotor loads) in one connector: one Python call per residual.
 
@@ -599,15 +527,15 @@ def landing_rhs(PB, IDX, R, q, v, tilts, thrust, amb_axial, out):
         om = v[i_th]
         tq = 0.0
         if R[R_WIND] != 0.0:
-            tq -= (R[R_CW1] + R[R_CW2] * abs(om)) * om
+            tq += _windage(om, R[R_CW1], R[R_CW2])
         if R[R_DRIVE] != 0.0:
-            tq += R[R_GAIN] * (R[R_OMEGA0] - om)
+            tq += _drive(om, R[R_GAIN], R[R_OMEGA0])
         out[i_th] += tq
         x = q[i_ax]
         xd = v[i_ax]
         fa = thrust + _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
         if amb_axial:
-            fa += -thrust - R[R_KAXAMB] * x - R[R_CAXAMB] * xd
+            fa += _amb(x, xd, -thrust, R[R_KAXAMB], R[R_CAXAMB])
         out[i_ax] += fa
     return out
 
@@ -634,7 +562,7 @@ def landing_jacobian(PB, IDX, R, q, v, tilts, amb_axial, fq, fv, out):
         om = v[i_th]
         dt = 0.0
         if R[R_WIND] != 0.0:
-            dt -= R[R_CW1] + 2.0 * R[R_CW2] * abs(om)
+            dt += _windage_d(om, R[R_CW1], R[R_CW2])
         if R[R_DRIVE] != 0.0:
             dt -= R[R_GAIN]
         out[i_th, i_th] -= fv * dt

@@ -40,14 +40,12 @@ from __future__ import annotations
 import csv
 import json
 import math
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-import numpy as np
-
-from .config import Table, load_toml, override_table, range_spec
+from .config import override_table, range_spec, sample_ranges, study_file
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
+from .runner import reduction_cache, run_all
 from .validate import paper, paper_dir
 
 #: s, the onset change between steps h and h/2 that an ensemble may show without its noise
@@ -63,10 +61,7 @@ DEFAULT_CASES = ["fw3000", "fw7000", "fw10000", "bw"]
 
 
 def load_space(path) -> dict:
-    path = Path(path)
-    data = load_toml(path)
-    try:
-        t = Table(data, "")
+    with study_file(path) as (path, t):
         n = t.integer("samples", 20)
         seed = t.integer("seed", 1, minimum=0)
         t_end = t.number("t_end", 0.8, positive=True)
@@ -83,20 +78,8 @@ def load_space(path) -> dict:
             range_spec(r, f"ranges.{k}", log=True)
         t.finish()
         _check_ranges(fixed, ranges, cases)
-    except InputError as err:
-        raise err.with_file(str(path)) from None
-    rng = np.random.default_rng(seed)
-    designs = []
-    for _ in range(n):
-        d = {}
-        for k, r in ranges.items():
-            if r.get("log"):
-                d[k] = float(10 ** rng.uniform(math.log10(r["min"]), math.log10(r["max"])))
-            else:
-                d[k] = float(rng.uniform(r["min"], r["max"]))
-        designs.append(d)
-    return {"designs": designs, "t_end": t_end, "verify_top": verify_top, "fixed": dict(fixed), "cases": cases,
-            "ensemble": ensemble}
+    return {"designs": sample_ranges(ranges, n, seed), "t_end": t_end, "verify_top": verify_top,
+            "fixed": dict(fixed), "cases": cases, "ensemble": ensemble}
 
 
 def _check_ranges(fixed: dict, ranges: dict, cases: list[str]) -> None:
@@ -135,7 +118,7 @@ def _run(job):
         sc = load_scenario(paper_dir() / fname, sets)
         if step_factor != 1.0:
             sc = load_scenario(paper_dir() / fname, sets + [f"solver.step={sc.solver.step * step_factor!r}"])
-        spec, t, q, v, info = simulate(sc, progress=False)
+        spec, t, q, v, info = simulate(sc, progress=False, reduction=reduction_cache())
         s = summarize(spec, t, evaluate(spec, t, q, v))
         r = member_result(s)
         return i, case, {**r, "force_max_n": r["v_force_range_n"][1], "ok": info["complete"]}
@@ -200,11 +183,8 @@ def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
 
 def _run_all(jobs, workers):
     results: dict[int, dict] = {}
-    if workers > 1:
-        with ProcessPoolExecutor(workers) as ex:
-            it = list(ex.map(_run, jobs))
-    else:
-        it = list(map(_run, jobs))
+    # _run turns a failing design into its row; BLAS as before (runner.worker_setup says why)
+    it = run_all(_run, jobs, workers, failures="raise", blas_threads=None)
     members: dict[tuple, list] = {}
     for i, case, r in it:
         if "#" in case:  # "CASE#k": member k of CASE's ensemble

@@ -133,21 +133,13 @@ def cmd_reduce(args) -> int:
 
 def _load_case(path: str, overrides):
     """A scenario TOML file, or a results.h5 whose stored scenario is re-run."""
-    from .scenario import load_scenario, scenario_from_dict
+    from .scenario import apply_overrides, load_scenario, scenario_from_dict
 
     if path.endswith(".h5"):
-
-        from .config import parse_value, set_dotted, split_override
         from .readers import read_results_guarded
 
         data = read_results_guarded(path, ("scenario",), field="scenario")["scenario"]
-        for item in overrides or []:
-            key, text = split_override(item)
-            try:
-                set_dotted(data, key, parse_value(text))
-            except InputError as err:
-                raise InputError(f"--set {key}", text, err.allowed) from None
-        return scenario_from_dict(data, source=path)
+        return scenario_from_dict(apply_overrides(data, overrides), source=path)
     return load_scenario(path, overrides)
 
 
@@ -242,10 +234,7 @@ def cmd_sweep(args) -> int:
 def cmd_diagnose(args) -> int:
     from pathlib import Path
 
-    from .diagnose import Point, diagnose, write_report
-    from .features import extract_features, features_from_table
-    from .measured import detect_drop, load_measurement
-    from .scenario import load_scenario
+    from .diagnose import diagnose, measured_for_diagnosis, write_report
 
     for opt, v in (("--workers", args.workers), ("--maxiter", args.maxiter), ("--max-effects", args.max_effects)):
         if v < 1:
@@ -259,36 +248,7 @@ def cmd_diagnose(args) -> int:
             raise InputError(f"--set {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
     if args.t_end is not None:
         sets.append(f"operating.t_end={args.t_end!r}")
-    sc = load_scenario(args.scenario, sets)
-    clearance = sc.bearings["DE"].clearance if "DE" in sc.bearings else next(iter(sc.bearings.values())).clearance
-    m = load_measurement(args.measured, time_offset_s=args.time_offset_s or 0.0)
-    if m.points:
-        meas = []
-        for p in m.points:
-            try:
-                load_scenario(args.scenario, sets + p.overrides)
-            except InputError as err:
-                raise InputError(f"points.{p.name}.set", " ".join(p.overrides),
-                                 f"not valid for {args.scenario}: {err.field} = {err.value!r}: {err.allowed}",
-                                 file=args.measured) from None
-            meas.append(Point(p.name, p.overrides, features_from_table(p.features, clearance,
-                                                                        where=f"points.{p.name}.features",
-                                                                        file=args.measured)))
-    elif m.features:
-        meas = features_from_table(m.features, clearance, file=args.measured)
-    else:
-        for name, (_, v) in m.channels.items():
-            if name.endswith("_m") and name != "axial_m" and np.nanmax(np.abs(v)) > 5 * clearance:
-                raise InputError(name, f"{np.nanmax(np.abs(v)):.3g} m", f"journal displacements beyond 5x the model's "
-                                 f"clearance ({clearance:g} m): data from a different rotor, or not in metres?",
-                                 file=args.measured)
-        t_drop = detect_drop(m, clearance) if args.time_offset_s is None else 0.0
-        m = m.shifted(t_drop or 0.0)
-        span = max(float(t[-1]) for t, _ in m.channels.values())
-        if span < 0.1:
-            raise InputError("time_s", f"{span:.3g} s after the drop", "record too short: need >= 0.1 s after the drop",
-                             file=args.measured)
-        meas = extract_features(m, clearance=clearance, t_drop=0.0)
+    clearance, m, meas = measured_for_diagnosis(args.scenario, args.measured, sets, args.time_offset_s)
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
     from .effects import CATALOGUE
 

@@ -76,8 +76,9 @@ Exudyn stores states every ``solver.output_period``. A sample is kept in ``resul
 a bearing's contact normal force changed faster than ``fast_force_rate_n_s`` or a contact
 opened or closed; or (b) its global sample index ``round(t / output_period)`` is a multiple of
 ``decimate_every``; or (c) it is the first or last sample of a chunk (the last one is the restart state). The fast
-phases are found from the contact normal forces computed vectorised at the full rate
-(:func:`normal_forces`); forces, powers and energies are then evaluated on the kept samples
+phases are found from the contact normal forces at the full rate (the radial contact law, compiled
+over the samples: ``bearing_kernel.contact_normal_forces``); forces, powers and energies are then
+evaluated on the kept samples
 only and the cumulative energies integrated over them, which keeps post-processing at a small
 fraction of the solve (the summary's energy balance error shows the cost of decimation). Whirl is
 classified per chunk on the full-rate orbit. ``/time_s`` holds the actual times of the kept
@@ -98,8 +99,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml, parse_value, set_dotted, split_override
+from .config import Table, load_toml
 from .errors import InputError
+from .bearing_kernel import contact_normal_forces
+from .mechanisms import dissipation_entries, rotor_force, series_units
 from .postprocess import energy_summary, evaluate, uniform
 from .safeio import WriteError, atomic_write_text, check_out_dir, copy_file, fault, fsync_dir, fsync_path, new_h5, reserve, tmp_name
 from .safeio import h5_guard as _guard
@@ -160,7 +163,7 @@ def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
 def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, Coastdown]:
     """Read a coast-down scenario file (a landing scenario plus an optional ``[coastdown]``
     table), apply ``--set key=value`` overrides, validate both parts."""
-    from .scenario import EFFECTS
+    from .scenario import apply_overrides
 
     path = Path(path)
     if path.suffix == ".h5":
@@ -170,17 +173,7 @@ def load_coastdown(path, overrides: list[str] | None = None) -> tuple[Scenario, 
             data = load_toml(path)
         except InputError as err:
             raise err.with_file(str(path)) from None
-    for item in overrides or []:
-        key, text = split_override(item)
-        if key.startswith("coastdown."):
-            if key[10:] not in FIELDS:
-                raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(FIELDS)}")
-            data.setdefault("coastdown", {})
-        try:
-            set_dotted(data, key, parse_value(text.strip()),
-                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
-        except InputError as err:
-            raise InputError(f"--set {key}", text.strip(), err.allowed) from None
+    apply_overrides(data, overrides, tables={"coastdown": FIELDS})
     cd_raw = data.pop("coastdown", None)
     scenario = scenario_from_dict(data, source=str(path))
     try:
@@ -210,22 +203,6 @@ def _stored_input(path: Path) -> dict:
 
 # --------------------------------------------------------------------------------------------
 # decimation
-
-def normal_forces(spec, q: np.ndarray, v: np.ndarray) -> list[np.ndarray]:
-    """Contact normal force of each bearing at every sample, vectorised (the law of
-    user_forces.radial_contact: F_N = delta^e (k_hertz + k_visc delta'), >= 0)."""
-    out = []
-    for b in spec.bearings:
-        L = b.laws
-        s, r = b.i_station, b.i_race
-        dy, dz = q[:, s] - q[:, r], q[:, s + 1] - q[:, r + 1]
-        dvy, dvz = v[:, s] - v[:, r], v[:, s + 1] - v[:, r + 1]
-        dist = np.hypot(dy, dz)
-        delta = np.maximum(dist - L.clearance, 0.0)
-        rate = (dy * dvy + dz * dvz) / np.maximum(dist, 1e-300)
-        out.append(np.maximum(delta ** L.exponent * (L.k_hertz + L.k_visc * rate), 0.0))
-    return out
-
 
 def keep_mask(t: np.ndarray, forces: list[np.ndarray], cd: Coastdown, output_period: float) -> tuple:
     """Samples of one chunk to keep (see the module docstring); returns (mask, fast mask)."""
@@ -284,14 +261,12 @@ def _append(ds, rows):
     ds[n:] = rows
 
 
-def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_names: list[str], bearing_names):
+def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_units_: dict, bearing_names):
     """A new coast-down results.h5 with empty resizable datasets (layout of rotorlanding.results
     plus /coastdown), written under a temporary name and renamed into place (commit 0)."""
     import exudyn
 
     from . import __version__
-    from .results import unit_of
-
     tmp = tmp_name(path, "part")
     # persistent free-space tracking: a partly filled compressed HDF5 chunk is rewritten at each
     # append, and without it the space it held is lost whenever the file is closed (file 2-4x larger)
@@ -317,8 +292,8 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_name
                 ds.attrs["names"] = json.dumps(spec.names)
                 ds.attrs["units"] = json.dumps(units)
             s = h5.create_group("series")
-            for name in series_names:
-                _resizable(s, name, (), unit=unit_of(name))
+            for name, unit in series_units_.items():
+                _resizable(s, name, (), unit=unit)
             h5["summary_json"] = json.dumps({"scenario": scenario.name, "complete": False})
             c = h5.create_group("coastdown")
             ch = c.create_group("chunks")
@@ -744,10 +719,7 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     ckpt.discard_leftovers()
     try:
         if not (existing and resume):
-            # series names: evaluate a one-sample record
-            q0, v0 = spec.initial_state()
-            names = list(evaluate(spec, np.zeros(2), np.vstack([q0, q0]), np.vstack([v0, v0])))
-            create_file(path, scenario, cd, spec, names, spec.bearing_names)
+            create_file(path, scenario, cd, spec, series_units(spec.bearing_names), spec.bearing_names)
         else:
             verify_checkpoint(path, spec, stream)
             if stream:
@@ -876,7 +848,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
         else:
             t[-1], q[-1], v[-1] = t1, qe, ve
         max_buffer = max(max_buffer, len(t))
-        keep, fast = keep_mask(t, normal_forces(spec, q, v), cd, s_k.output_period)
+        keep, fast = keep_mask(t, contact_normal_forces(spec, q, v), cd, s_k.output_period)
         whirl = _classify_whirl(spec, t, q, v, t1 - t0) if ok and len(t) > 8 else (0, float("nan"))
         t, q, v = t[keep], q[keep], v[keep]
         series = evaluate(spec, t, q, v)  # on the kept samples only; cumulative from the chunk start
@@ -891,9 +863,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
                    "jacobians": stats["jacobians"], "samples_kept": len(t) - (1 if k > 0 else 0),
                    "samples_fast": int(fast.sum()), "whirl_direction": whirl[0], "whirl_frequency_hz": whirl[1]}
             for b in spec.bearing_names:
-                row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(
-                    series[b + "_contact_force_y_n"] + series[b + "_rub_force_y_n"],
-                    series[b + "_contact_force_z_n"] + series[b + "_rub_force_z_n"])))
+                row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(*rotor_force(series, b))))
             reason, t_stop = "", None
             if speed_now <= stop_rpm:
                 reason = f"rotor speed {speed_now:.1f} rpm <= stop_speed_rpm {stop_rpm:g}"
@@ -1099,7 +1069,7 @@ def plot_coastdown(h5_path: Path, png: Path) -> Path:
         s = h5["series"]
         rotor = s["rotor_speed_rpm"][()]
         races = {k[:-len("_race_speed_rpm")]: s[k][()] for k in s if k.endswith("_race_speed_rpm")}
-        diss = {k[len("dissipated_"):-2]: s[k][()] for k in s if k.startswith("dissipated_")}
+        diss = {k: s["dissipated_" + k + "_j"][()] for k in dissipation_entries() if "dissipated_" + k + "_j" in s}
         ch = h5["coastdown/chunks"]
         tc = ch["t_end_s"][()]
         fmax = {k[:-len("_max_contact_force_n")]: ch[k][()] for k in ch if k.endswith("_max_contact_force_n")}

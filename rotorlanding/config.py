@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 import math
 import tomllib
+from contextlib import contextmanager
 from pathlib import Path
 
 from .errors import InputError
@@ -225,3 +226,34 @@ def range_spec(value, field: str, *, log: bool = False) -> tuple[float, float, b
     if lg and not lo > 0:
         raise InputError(f"{field}.min", lo, "must be > 0 with log = true")
     return float(lo), float(hi), lg
+
+
+@contextmanager
+def study_file(path):
+    """``(path, top table)`` of a study's TOML file (sweep, calibration space, fit-modes space):
+    every InputError raised inside the ``with`` block names the file."""
+    path = Path(path)
+    data = load_toml(path)
+    try:
+        yield path, Table(data, "")
+    except InputError as err:
+        raise err.with_file(str(path)) from None
+
+
+def sample_ranges(ranges: dict, n: int, seed: int) -> list[dict]:
+    """``n`` Monte Carlo draws of ``{key: {min, max[, log]}}`` (validated by :func:`range_spec`):
+    uniform, or log-uniform with ``log = true``; one generator, the keys in file order per draw,
+    so a seed gives the same draws in every study."""
+    import numpy as np
+
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        d = {}
+        for k, r in ranges.items():
+            if r.get("log"):
+                d[k] = float(10 ** rng.uniform(math.log10(r["min"]), math.log10(r["max"])))
+            else:
+                d[k] = float(rng.uniform(r["min"], r["max"]))
+        out.append(d)
+    return out

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,6 +32,8 @@ from .effects import CATALOGUE
 from .errors import InputError
 from .features import extract_features, gap_points
 from .measured import Measurement
+from .mechanisms import rotor_force
+from .runner import Pool, reduction_cache
 
 #: gaps below this are treated as noise: on clean data (the model against its own resampled,
 #: noisy output) the gap is 0.03-0.1, so a disagreement must exceed 3x that to be explained
@@ -60,14 +62,14 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
     from .scenario import load_scenario
 
     sc = load_scenario(scenario_path, overrides)
-    spec, t, q, v, info = simulate(sc, progress=False)
+    spec, t, q, v, info = simulate(sc, progress=False, reduction=reduction_cache())
     series = evaluate(spec, t, q, v)
     chans = {}
     for b in spec.bearings:
-        for ax in ("y", "z"):
+        force = rotor_force(series, b.name)
+        for ax, f in zip(("y", "z"), force):
             chans[f"{b.name}_{ax}_m"] = (t, series[f"{b.name}_{ax}_m"])
-            chans[f"{b.name}_force_{ax}_n"] = (t, series[f"{b.name}_contact_force_{ax}_n"]
-                                              + series[f"{b.name}_rub_force_{ax}_n"])
+            chans[f"{b.name}_force_{ax}_n"] = (t, f)
         chans[f"{b.name}_inner_race_speed_rpm"] = (t, series[f"{b.name}_race_speed_rpm"])
     chans["rotor_speed_rpm"] = (t, series["rotor_speed_rpm"])
     chans["axial_m"] = (t, series["axial_position_m"])
@@ -92,7 +94,7 @@ class _Simulator:
 
     def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str]):
         self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
-        self.pool = ProcessPoolExecutor(workers) if workers > 1 else None
+        self.pool = Pool(workers, blas_threads=None)  # BLAS as before (runner.worker_setup says why)
         self.count = 0
 
     def overrides(self, p: Point, extra: list[str]) -> list[str]:
@@ -102,7 +104,7 @@ class _Simulator:
         """Simulated features at every point for each model variant (all submitted at once)."""
         jobs = [(self.scenario_path, self.overrides(p, extra), self.clearance) for extra in extras for p in self.points]
         self.count += len(jobs)
-        out = [_sim_job(j) for j in jobs] if self.pool is None else list(self.pool.map(_sim_job, jobs))
+        out = self.pool.map(_sim_job, jobs, failures="raise")  # _sim_job turns a failed trial into its row
         n = len(self.points)
         return [out[i * n:(i + 1) * n] for i in range(len(extras))]
 
@@ -121,8 +123,49 @@ class _Simulator:
         return self.gaps([extra])[0]
 
     def close(self):
-        if self.pool is not None:
-            self.pool.shutdown()
+        self.pool.close()
+
+
+def measured_for_diagnosis(scenario_path, measured_path, sets: list[str], time_offset_s: float | None = None):
+    """What ``rotorlanding diagnose`` compares the model with: (clearance of the scenario's DE
+    bearing (else its first), the measurement, its features: one ``Point`` per operating point of a
+    points file, a feature table, or features extracted from a record after its detected drop).
+    Every bad input is one InputError naming the file."""
+    from .features import features_from_table
+    from .measured import detect_drop, load_measurement
+    from .scenario import load_scenario
+
+    sc = load_scenario(scenario_path, sets)
+    clearance = sc.bearings["DE"].clearance if "DE" in sc.bearings else next(iter(sc.bearings.values())).clearance
+    m = load_measurement(measured_path, time_offset_s=time_offset_s or 0.0)
+    if m.points:
+        meas = []
+        for p in m.points:
+            try:
+                load_scenario(scenario_path, sets + p.overrides)
+            except InputError as err:
+                raise InputError(f"points.{p.name}.set", " ".join(p.overrides),
+                                 f"not valid for {scenario_path}: {err.field} = {err.value!r}: {err.allowed}",
+                                 file=measured_path) from None
+            meas.append(Point(p.name, p.overrides, features_from_table(p.features, clearance,
+                                                                        where=f"points.{p.name}.features",
+                                                                        file=measured_path)))
+    elif m.features:
+        meas = features_from_table(m.features, clearance, file=measured_path)
+    else:
+        for name, (_, v) in m.channels.items():
+            if name.endswith("_m") and name != "axial_m" and np.nanmax(np.abs(v)) > 5 * clearance:
+                raise InputError(name, f"{np.nanmax(np.abs(v)):.3g} m", f"journal displacements beyond 5x the model's "
+                                 f"clearance ({clearance:g} m): data from a different rotor, or not in metres?",
+                                 file=measured_path)
+        t_drop = detect_drop(m, clearance) if time_offset_s is None else 0.0
+        m = m.shifted(t_drop or 0.0)
+        span = max(float(t[-1]) for t, _ in m.channels.values())
+        if span < 0.1:
+            raise InputError("time_s", f"{span:.3g} s after the drop", "record too short: need >= 0.1 s after the drop",
+                             file=measured_path)
+        meas = extract_features(m, clearance=clearance, t_drop=0.0)
+    return clearance, m, meas
 
 
 def _param_overrides(param, x):

@@ -32,7 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .bearing_kernel import bearing_functions, landing_functions
-from .forces import BEARING_LOCAL, bearing_forces, rotor_forces, rotor_loads_jacobian, rotor_loads_need_lateral
+from .forces import (BEARING_LOCAL, bearing_forces, mechanism_functions, registry_forces, rotor_forces,
+                     rotor_loads_jacobian, rotor_loads_need_lateral)
 from .landing import LandingSpec
 
 
@@ -333,6 +334,19 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
             mbs.AddObject(ObjectGenericODE2(nodeNumbers=lat + [spin_node, race, outer], massMatrix=np.zeros((n, n)),
                                             stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
                                             forceVector=[0.0] * n, forceUserFunction=bearing_uf, **extra))
+
+    # mechanisms of the registry outside the compiled kernel: one connector each per bearing where
+    # active (an inactive one adds nothing, so the default model is unchanged); the plain-Python
+    # bearing connectors (analytic_jacobian=False) already include them (forces.bearing_forces)
+    for b, (race, outer) in zip(spec.bearings, race_outer):
+        for m in (registry_forces(spec, b.laws) if analytic_jacobian else ()):
+            fm, jm = mechanism_functions(m, b.laws)
+            n = len(BEARING_LOCAL)
+            extra = {"jacobianUserFunction": jm} if jm is not None else {}
+            mbs.AddObject(ObjectGenericODE2(nodeNumbers=[station_nodes[spec.stations.index(b.station)], spin_node,
+                                                         race, outer], massMatrix=np.zeros((n, n)),
+                                            stiffnessMatrix=np.zeros((n, n)), dampingMatrix=np.zeros((n, n)),
+                                            forceVector=[0.0] * n, forceUserFunction=fm, **extra))
 
     import exudyn as exu  # noqa: F811 (output types)
 

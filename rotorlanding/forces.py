@@ -26,10 +26,12 @@ import numpy as np
 
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub as _axial_rub_py
+from user_forces.axial_rub import axial_rub_quadrature
 from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque, worn_friction_with_derivatives
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
-from user_forces.spin import windage_torque
+from user_forces.amb import amb_force, unbalance_force
+from user_forces.spin import drive_torque, windage_torque, windage_torque_derivative
 
 from .landing import G_ACC, BearingSpec, LandingSpec
 from .params import OMEGA_REG_HP
@@ -43,7 +45,14 @@ def _compile_axial_rub():
         import numba
     except ImportError:  # pragma: no cover
         return _axial_rub_py
-    return numba.njit(cache=True)(_axial_rub_py)
+    quadrature = numba.njit(cache=True)(axial_rub_quadrature)
+
+    @numba.njit(cache=True)
+    def compiled(dy, dz, dvy, dvz, om, omi, alpha, beta, delta_ax, f_ax, sign, mu_ax, v_reg, r1, r2):
+        r = quadrature(dy, dz, dvy, dvz, om, omi, alpha, beta, delta_ax, f_ax, sign, mu_ax, v_reg, r1, r2, False)
+        return r[0], r[1], r[2], r[3], r[4]
+
+    return compiled
 
 
 axial_rub = _compile_axial_rub()
@@ -66,34 +75,35 @@ def rotor_loads_need_lateral(spec: LandingSpec, gyroscopic_in_user_function: boo
     return amb_active or spec.unbalance_rows is not None or (gyroscopic_in_user_function and spec.rotor_laws.gyroscopic)
 
 
+def _rotor_loads(spec: LandingSpec, gyroscopic_in_user_function: bool) -> tuple:
+    """The rotor loads' parameters, read once for :func:`rotor_forces` and its Jacobian (the
+    closures bind them as locals: the rotor loads run in a Python user function when AMBs hold or
+    an unbalance acts)."""
+    sc = spec.scenario
+    rl = spec.rotor_laws
+    amb = sc.amb
+    n_lat = spec.n_lat if rotor_loads_need_lateral(spec, gyroscopic_in_user_function) else 0
+    G = spec.G if (rl.gyroscopic and gyroscopic_in_user_function) else None
+    unb = spec.unbalance_rows
+    u_mag = sc.unbalance.magnitude if unb is not None else 0.0
+    u_phase = math.radians(sc.unbalance.phase_deg) if unb is not None else 0.0
+    return (n_lat, G, amb.t_drop, amb.stiffness, amb.damping, spec.amb_rows, amb.axial_stiffness, amb.axial_damping,
+            amb.drop_radial, amb.drop_axial, unb, u_mag, u_phase, rl.windage, rl.c_w1, rl.c_w2, rl.constant_drive,
+            rl.drive_gain, rl.omega0, axial_law(spec))
+
+
 def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True):
     """Closure for the rotor object: gyroscopics, AMB hold, unbalance, windage, drive, axial.
 
     With ``gyroscopic_in_user_function=False`` the caller accounts for -Omega G q' itself (the
     Exudyn model puts Omega G into the damping matrix before each step, see exudyn_model)."""
-    sc = spec.scenario
-    rl = spec.rotor_laws
-    n_lat = spec.n_lat
-    G = spec.G if (rl.gyroscopic and gyroscopic_in_user_function) else None
-    amb = sc.amb
-    t_drop = amb.t_drop
-    k_amb, c_amb = amb.stiffness, amb.damping
-    bias = [(-spec.f_gravity[iy], -spec.f_gravity[iz]) for iy, iz in spec.amb_rows]
-    rows = spec.amb_rows
-    kax_amb, cax_amb = amb.axial_stiffness, amb.axial_damping
-    drop_radial, drop_axial = amb.drop_radial, amb.drop_axial
-    unb = spec.unbalance_rows
+    (n_lat, G, t_drop, k_amb, c_amb, rows, kax_amb, cax_amb, drop_radial, drop_axial, unb, u_mag, u_phase, wind, cw1,
+     cw2, constant_drive, gain, omega0, fax) = _rotor_loads(spec, gyroscopic_in_user_function)
     if unb is not None:
-        u_mag = sc.unbalance.magnitude
-        u_phase = math.radians(sc.unbalance.phase_deg)
         uy, uz = unb
-    wind, cw1, cw2 = rl.windage, rl.c_w1, rl.c_w2
-    constant_drive, gain, omega0 = rl.constant_drive, rl.drive_gain, rl.omega0
-    fax = axial_law(spec)
+    bias = [(-spec.f_gravity[iy], -spec.f_gravity[iz]) for iy, iz in rows]
     thrust = spec.thrust
-    if not rotor_loads_need_lateral(spec, gyroscopic_in_user_function):
-        n_lat = 0  # local coordinates are only [theta, x_ax]
-    i_th, i_ax = n_lat, n_lat + 1
+    i_th, i_ax = n_lat, n_lat + 1  # local coordinates: [lateral (n_lat) | theta, x_ax], n_lat may be 0
 
     def f(t, q, v):
         omega = v[i_th]
@@ -104,24 +114,22 @@ def rotor_forces(spec: LandingSpec, *, gyroscopic_in_user_function: bool = True)
         out += [0.0, 0.0]
         if n_lat and (t < t_drop or not drop_radial):
             for (iy, iz), (by, bz) in zip(rows, bias):
-                out[iy] += by - k_amb * q[iy] - c_amb * v[iy]
-                out[iz] += bz - k_amb * q[iz] - c_amb * v[iz]
+                out[iy] += amb_force(q[iy], v[iy], by, k_amb, c_amb)
+                out[iz] += amb_force(q[iz], v[iz], bz, k_amb, c_amb)
         if unb is not None:
-            ang = q[i_th] + u_phase
-            fu = u_mag * omega * omega
-            fy, fz = fu * math.cos(ang), fu * math.sin(ang)
+            fy, fz = unbalance_force(omega, q[i_th] + u_phase, u_mag)
             for k in range(n_lat):
                 out[k] += uy[k] * fy + uz[k] * fz
         torque = 0.0
         if wind:
             torque += windage_torque(omega, cw1, cw2)
         if constant_drive:
-            torque += gain * (omega0 - omega)
+            torque += drive_torque(omega, gain, omega0)
         out[i_th] = torque
         x, xd = q[i_ax], v[i_ax]
         fa = thrust(t) + fax(x, xd)
         if t < t_drop or not drop_axial:
-            fa += -thrust(t) - kax_amb * x - cax_amb * xd
+            fa += amb_force(x, xd, -thrust(t), kax_amb, cax_amb)
         out[i_ax] = fa
         return out
 
@@ -133,29 +141,14 @@ def rotor_loads_jacobian(spec: LandingSpec, *, gyroscopic_in_user_function: bool
     ``jac(t, q, v, fq, fv)`` returns -(fq dF/dq + fv dF/dv) over the same local coordinates
     (AMB, unbalance, windage, drive, axial contact and AMB; gyroscopics only when in the user
     function)."""
-    sc = spec.scenario
-    rl = spec.rotor_laws
-    n_lat = spec.n_lat
-    G = spec.G if (rl.gyroscopic and gyroscopic_in_user_function) else None
-    amb = sc.amb
-    t_drop, k_amb, c_amb = amb.t_drop, amb.stiffness, amb.damping
-    rows = spec.amb_rows
-    kax_amb, cax_amb = amb.axial_stiffness, amb.axial_damping
-    drop_radial, drop_axial = amb.drop_radial, amb.drop_axial
-    unb = spec.unbalance_rows
+    (n_lat, G, t_drop, k_amb, c_amb, rows, kax_amb, cax_amb, drop_radial, drop_axial, unb, u_mag, u_phase, wind, cw1,
+     cw2, constant_drive, gain, _, fax) = _rotor_loads(spec, gyroscopic_in_user_function)
     if unb is not None:
-        u_mag = sc.unbalance.magnitude
-        u_phase = math.radians(sc.unbalance.phase_deg)
         uy, uz = unb
-    wind, cw1, cw2 = rl.windage, rl.c_w1, rl.c_w2
-    constant_drive, gain = rl.constant_drive, rl.drive_gain
-    a = sc.axial
+    a = spec.scenario.axial
     cl_ax, dm, cax = a.cl_ax, a.delta_m, a.c_ax
     k1 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_ws)
     k2 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_h)
-    fax = axial_law(spec)
-    if not rotor_loads_need_lateral(spec, gyroscopic_in_user_function):
-        n_lat = 0
     n = n_lat + 2
     i_th, i_ax = n_lat, n_lat + 1
 
@@ -180,7 +173,7 @@ def rotor_loads_jacobian(spec: LandingSpec, *, gyroscopic_in_user_function: bool
             Jv[:n_lat, i_th] += 2.0 * u_mag * omega * (uy * ca + uz * sa)
         dt = 0.0
         if wind:
-            dt -= cw1 + 2.0 * cw2 * abs(omega)
+            dt += windage_torque_derivative(omega, cw1, cw2)
         if constant_drive:
             dt -= gain
         Jv[i_th, i_th] = dt
@@ -254,7 +247,38 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
             ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)
             hy += ky
             hz += kz
-        return [fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + wi, t_race,
-                -by + hy - co * voy, -bz + hz - co * voz + wo]
+        out = [fy, fz, t_rot, 0.0, -fy + by - ci * vry, -fz + bz - ci * vrz + wi, t_race,
+               -by + hy - co * voy, -bz + hz - co * voz + wo]
+        for force, x in extra:
+            for i, fi in enumerate(force(x, q, v)):
+                out[i] += fi
+        return out
 
+    extra = [(m.force, L.extra) for m in registry_forces(spec, L)]
     return f
+
+
+def registry_forces(spec: LandingSpec, laws) -> list:
+    """The active mechanisms of the registry that bring their own solver hook (not compiled into
+    bearing_kernel) for one bearing's resolved laws."""
+    from .mechanisms import REGISTRY
+
+    return [m for m in REGISTRY if m.force is not None and m.active(spec, laws)]
+
+
+def mechanism_functions(m, laws):
+    """Exudyn (force, jacobian) user functions of a registry mechanism over BEARING_LOCAL; the
+    jacobian is None (Exudyn differentiates numerically) when the mechanism declares none."""
+    x, force_law, jac_law = laws.extra, m.force, m.jacobian
+
+    def force(mbs, t, item, q, q_t):
+        return list(force_law(x, q, q_t))
+
+    if jac_law is None:
+        return force, None
+
+    def jacobian(mbs, t, item, q, q_t, fq, fv):
+        Jq, Jv = jac_law(x, q, q_t)
+        return -(fq * np.asarray(Jq) + fv * np.asarray(Jv))
+
+    return force, jacobian

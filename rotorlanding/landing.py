@@ -122,11 +122,13 @@ class LandingSpec:
         return q0, v0
 
 
-def build_spec(scenario: Scenario) -> LandingSpec:
+def build_spec(scenario: Scenario, *, reduction=None) -> LandingSpec:
+    """The landing's equations from a scenario. ``reduction``: the Craig-Bampton function to use
+    (a study passes its ``runner.ReductionCache``; default ``reduction.craig_bampton``)."""
     fe = assemble(scenario.rotor)
     red = scenario.rotor.reduction
     n_modes = red.modes if scenario.effects["rotor_flexibility"] else 0
-    cb = craig_bampton(fe, red.boundary_stations, n_modes, rotations=False)
+    cb = (reduction or craig_bampton)(fe, red.boundary_stations, n_modes, rotations=False)
     stations = list(red.boundary_stations)
     n_lat = cb.n
     names = list(cb.names) + ["theta", "x_axial"]

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
+from .mechanisms import rotor_force
 from .readers import read_columns, read_results_guarded, read_text
 
 CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm",
@@ -153,9 +154,7 @@ def load_measurement(path, *, time_offset_s: float = 0.0) -> Measurement:
                 cols[dst] = res["series"][src]
         for b in ("DE", "NDE"):
             if f"{b}_contact_force_y_n" in res["series"]:
-                for ax in ("y", "z"):
-                    cols[f"{b}_force_{ax}_n"] = res["series"][f"{b}_contact_force_{ax}_n"] + \
-                        res["series"][f"{b}_rub_force_{ax}_n"]
+                cols[f"{b}_force_y_n"], cols[f"{b}_force_z_n"] = rotor_force(res["series"], b)
         m = _from_columns(cols, str(path))
     elif suffix in (".toml", ".json"):
         return _feature_table(path, suffix)

@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import Table, load_toml, range_spec, set_dotted
+from .config import load_toml, range_spec, set_dotted, study_file
 from .errors import InputError
 
 
@@ -51,10 +51,7 @@ def _finite(x) -> bool:
 
 
 def load_space(path) -> dict:
-    path = Path(path)
-    data = load_toml(path)
-    try:
-        t = Table(data, "")
+    with study_file(path) as (path, t):
         rotor_file = (path.parent / t.string("rotor")).resolve()
         if not rotor_file.is_file():
             raise InputError("rotor", t.raw("rotor"), f"must name an existing rotor file ({rotor_file} not found)")
@@ -90,8 +87,6 @@ def load_space(path) -> dict:
         for k, r in ranges.items():
             range_spec(r, f"ranges.{k}")
         t.finish()
-    except InputError as err:
-        raise err.with_file(str(path)) from None
     rotor_data = load_toml(rotor_file)
     for k in ranges:
         try:
@@ -170,7 +165,7 @@ def fit_modes(space_path, out_dir=None, *, stream=None) -> dict:
         fit = (f[:n_fit] - targets[:n_fit]) / targets[:n_fit]
         return float(np.sum(fit ** 2) + 100.0 * np.sum(excess))
 
-    from .sweep import limit_blas_threads
+    from .runner import limit_blas_threads
 
     # single-threaded BLAS: faster for these small eigenproblems, and the float results (hence
     # the search path) do not depend on the machine's thread count

@@ -16,7 +16,7 @@ by its own route, so that a wiring mistake here cannot hide in both the model an
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from user_forces.ball_bearing import OMEGA_REG_DEFAULT, harris_palmgren_constants, worn_friction_constants
 
@@ -72,6 +72,9 @@ class BearingLaws:
     face_inner_radius: float    # m, r1
     face_outer_radius: float    # m, r2
     v_reg_axial: float          # m/s
+    # inputs of the registry's mechanisms outside the kernel (mechanisms.Param): key -> value, 0 when
+    # the mechanism's effect is off
+    extra: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -115,7 +118,14 @@ def bearing_laws(scenario, bearing) -> BearingLaws:
         outer_race_damping=p.outer_race_damping,
         axial_face=bool(p.axial_face), axial_rub=bool(p.axial_face and eff["axial_rub"]),
         mu_ax=c.mu_ax, face_inner_radius=p.face_inner_radius, face_outer_radius=p.face_outer_radius,
-        v_reg_axial=c.v_reg_axial)
+        v_reg_axial=c.v_reg_axial, extra=_extra(eff, p))
+
+
+def _extra(eff, bearing) -> dict:
+    """The registry mechanisms' own inputs, 0 where the mechanism's effect is off."""
+    from .mechanisms import REGISTRY  # the registry reads this module's records
+
+    return {par.key: (bearing.extra[par.key] if eff[m.effect] else 0.0) for m in REGISTRY for par in m.params}
 
 
 def rotor_laws(scenario) -> RotorLaws:

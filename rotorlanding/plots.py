@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .mechanisms import rotor_force
 from .postprocess import uniform
 from .whirl import full_spectrum
 
@@ -52,10 +53,8 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
                    band=lambda b: bearings[b] * 1e3)
     # the force the race exerts on the rotor, positive up: the sign of the paper's Figs. 12, 22, 30
     # and Tables 1-2 (a rotor resting on its catcher bearing is pushed up)
-    time_histories(lambda b: [((series[f"{b}_contact_force_z_n"] + series[f"{b}_rub_force_z_n"]) * 1e-3,
-                               "vertical z (on the rotor)"),
-                              ((series[f"{b}_contact_force_y_n"] + series[f"{b}_rub_force_y_n"]) * 1e-3,
-                               "horizontal y (on the rotor)")],
+    time_histories(lambda b: [(rotor_force(series, b)[1] * 1e-3, "vertical z (on the rotor)"),
+                              (rotor_force(series, b)[0] * 1e-3, "horizontal y (on the rotor)")],
                    "{b} force on the rotor [kN]", "force on the rotor (race contact + face rub)",
                    "forces.png")
 

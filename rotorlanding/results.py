@@ -9,7 +9,7 @@ HDF5 layout::
                       re-runs exactly this case
     /time_s           sample times [s]
     /states/q, /states/v   generalised coordinates and velocities, attrs: names, units
-    /series/NAME      derived time series; attr unit (SI, given by the name's suffix)
+    /series/NAME      derived time series; attr unit (SI, declared in mechanisms.series_units)
     /summary_json     the summary (JSON text)
 
 A coast-down (``rotorlanding coastdown``, :mod:`rotorlanding.coastdown`) writes the same datasets
@@ -29,16 +29,6 @@ import numpy as np
 from . import __version__
 from .safeio import WriteError, fault, fsync_dir, fsync_path, h5_guard, new_h5, tmp_name, unlink_quietly
 
-SUFFIX_UNITS = {"_m": "m", "_n": "N", "_nm": "N m", "_j": "J", "_w": "W", "_rpm": "rpm", "_m_s": "m/s", "_s": "s"}
-
-
-def unit_of(name: str) -> str:
-    for suffix in sorted(SUFFIX_UNITS, key=len, reverse=True):
-        if name.endswith(suffix):
-            return SUFFIX_UNITS[suffix]
-    return "-"
-
-
 def coordinate_units(names: list[str]) -> list[str]:
     out = []
     for nm in names:
@@ -52,8 +42,9 @@ def coordinate_units(names: list[str]) -> list[str]:
 
 
 def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[str], t, q, v, series: dict,
-                  summary: dict, complete: bool, t_reached: float, message: str = "") -> Path:
-    """Write results.h5 atomically: a temporary name beside it, fsync, rename."""
+                  units: dict, summary: dict, complete: bool, t_reached: float, message: str = "") -> Path:
+    """Write results.h5 atomically: a temporary name beside it, fsync, rename. ``units``: the unit
+    of every series (``mechanisms.series_units``; a series without one is an error)."""
     path = Path(path)
     tmp = tmp_name(path, "part")
     arrays = [np.asarray(t), np.asarray(q), np.asarray(v)] + [np.asarray(a) for a in series.values()]
@@ -65,8 +56,8 @@ def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[s
         with h5_guard(h5, tmp):
             # the datasets stay referenced until the flush: one freed earlier flushes its data
             # on its own, where a failed write cannot be caught
-            held = _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached,
-                         message)
+            held = _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, units, summary, complete,
+                         t_reached, message)
             h5.flush()
             del held
         fault("results-written")
@@ -79,7 +70,8 @@ def write_results(path, *, scenario_raw: dict, scenario_name: str, names: list[s
     return path
 
 
-def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, complete, t_reached, message) -> list:
+def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, units, summary, complete, t_reached,
+          message) -> list:
     """Write the layout into the open file; returns the datasets created (see write_results)."""
     import exudyn
 
@@ -99,16 +91,16 @@ def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, summary, comp
     g = h5.create_group("states")
     for key, arr, vel in (("q", q, False), ("v", v, True)):
         ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4)
-        units = coordinate_units(names)
+        cu = coordinate_units(names)
         if vel:
-            units = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in units]
+            cu = [u.replace("rad", "rad/s") if u == "rad" else (u + "/s") for u in cu]
         ds.attrs["names"] = json.dumps(names)
-        ds.attrs["units"] = json.dumps(units)
+        ds.attrs["units"] = json.dumps(cu)
         held.append(ds)
     s = h5.create_group("series")
     for name, arr in series.items():
         ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4)
-        ds.attrs["unit"] = unit_of(name)
+        ds.attrs["unit"] = units[name]
         held.append(ds)
     held.append(h5.create_dataset("summary_json", data=json.dumps(summary)))
     return held + [g, s]

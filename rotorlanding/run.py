@@ -25,6 +25,7 @@ import numpy as np
 
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
+from .mechanisms import series_units
 from .postprocess import evaluate, summarize
 from .results import write_results
 from .safeio import WriteError, atomic_write_text, check_out_dir, fault, unlink_quietly
@@ -59,9 +60,9 @@ class Progress:
         self.stream.flush()
 
 
-def simulate(scenario: Scenario, *, progress: bool | None = None):
-    """Solve the scenario; returns (spec, t, q, v, info)."""
-    spec = build_spec(scenario)
+def simulate(scenario: Scenario, *, progress: bool | None = None, reduction=None):
+    """Solve the scenario; returns (spec, t, q, v, info). ``reduction``: see ``landing.build_spec``."""
+    spec = build_spec(scenario, reduction=reduction)
     model = build_exudyn(spec)
     settings = SolverSettings.from_spec(spec)
     n_steps = scenario.t_end / settings.step
@@ -81,7 +82,8 @@ def simulate(scenario: Scenario, *, progress: bool | None = None):
     return spec, t, q, v, stats
 
 
-def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True) -> dict:
+def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, plots: bool = True,
+                 reduction=None) -> dict:
     """Simulate and write results.h5, summary.json and the figures into ``out_dir``."""
     out = check_out_dir(Path(out_dir))  # before the solve: a bad --out is found at once
     try:
@@ -90,7 +92,7 @@ def run_scenario(scenario: Scenario, out_dir, *, progress: bool | None = None, p
     except OSError as exc:
         raise WriteError(out / "summary.json", exc) from None
     fault("run-started")
-    spec, t, q, v, stats = simulate(scenario, progress=progress)
+    spec, t, q, v, stats = simulate(scenario, progress=progress, reduction=reduction)
     try:
         return _write(scenario, out, spec, t, q, v, stats, plots)
     except OSError as exc:
@@ -126,7 +128,8 @@ def _write(scenario, out, spec, t, q, v, stats, plots) -> dict:
                         f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
     summary["warnings"] = warnings
     write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
-                  t=t, q=q, v=v, series=series, summary=summary, complete=stats["complete"],
+                  t=t, q=q, v=v, series=series, units=series_units(spec.bearing_names), summary=summary,
+                  complete=stats["complete"],
                   t_reached=float(t[-1]), message=summary.get("message", ""))
     # the summary is final only once results.h5 is: a kill in between leaves `running`
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))

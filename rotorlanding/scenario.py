@@ -27,6 +27,7 @@ from pathlib import Path
 
 from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted, split_override
 from .errors import InputError
+from .mechanisms import extra_bearing_params, extra_effects
 from .rotor import Rotor, rotor_from_dict
 
 #: switchable effects and their defaults (True = on)
@@ -42,6 +43,7 @@ EFFECTS = {
     "worn_bearing_drag": False,      # load-independent drag torque of a worn catcher bearing (not in the paper)
     "unbalance": False,              # rotating unbalance force from [unbalance]
     "rotor_flexibility": True,       # keep the fixed-interface modes (false: rigid-rotor model)
+    **extra_effects(),               # switches of mechanisms outside the compiled kernel (mechanisms.py)
 }
 
 #: the two catcher bearings of the paper's rig; any other name of letters and digits works too
@@ -106,6 +108,8 @@ class Bearing:
     axial_face: bool            # this bearing takes the axial thrust on its face
     face_inner_radius: float    # m, r1 of the thrust-face annulus
     face_outer_radius: float    # m, r2
+    #: inputs of mechanisms outside the compiled kernel, key -> value (mechanisms.Param, SI)
+    extra: dict = field(default_factory=dict)
 
     @property
     def race_radius(self) -> float:
@@ -272,6 +276,7 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         axial_face=t.boolean("axial_face", False),
         face_inner_radius=t.number("face_inner_radius", 0.0, **nn),
         face_outer_radius=t.number("face_outer_radius", 0.0, **nn),
+        extra={p.key: t.number(p.key, p.default, **nn) for p in extra_bearing_params()},
     )
     from .rotor import MAX_DIMENSION
 
@@ -577,12 +582,26 @@ def load_scenario(path, overrides: list[str] | None = None, overlays=()) -> Scen
             data = deep_merge(data, load_toml(Path(extra)))
     except InputError as err:
         raise err.with_file(str(path)) from None
+    apply_overrides(data, overrides)
+    return scenario_from_dict(data, source=str(path))
+
+
+def apply_overrides(data: dict, overrides, *, tables: dict | None = None) -> dict:
+    """The one ``--set key=value`` parser (scenario files, a stored results.h5's scenario, coast-down
+    files): each item is set in the raw input ``data`` (in place; returned). A key must exist in
+    the input, except an effect switch (a known switch with its default) and a field of an
+    optional table named in ``tables`` (table -> its allowed fields, e.g. ``coastdown``), which
+    are created; the schema validation afterwards judges the value."""
     for item in overrides or []:
         key, text = split_override(item)
+        head, _, rest = key.partition(".")
+        if tables and head in tables:
+            if rest not in tables[head]:
+                raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(tables[head])}")
+            data.setdefault(head, {})
         try:
-            # effects may be absent from the file yet are known switches with defaults
-            set_dotted(data, key, parse_value(text),
-                       must_exist=not (key.startswith("effects.") and key[8:] in EFFECTS), create_leaf=True)
+            set_dotted(data, key, parse_value(text), must_exist=not (head == "effects" and rest in EFFECTS),
+                       create_leaf=True)
         except InputError as err:
             raise InputError(f"--set {key}", text, err.allowed) from None
-    return scenario_from_dict(data, source=str(path))
+    return data

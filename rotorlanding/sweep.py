@@ -41,32 +41,35 @@ from __future__ import annotations
 
 import csv
 import functools
-import hashlib
 import itertools
 import json
 import os
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-import numpy as np
-
-from .config import Table, load_toml, override_table, range_spec, value_list
+from .config import override_table, range_spec, sample_ranges, study_file, value_list
 from .errors import InputError
+from .runner import ReductionCache, executor, reduction_cache, worker_setup
 from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
               "whirl_end_s", "whirl_persistence", "whirl_bearing",
-              "DE_max_contact_force_n", "NDE_max_contact_force_n", "DE_vertical_min_m", "DE_vertical_max_m",
+              # per bearing of the sweep's scenario, in its order (BEARING_FIELDS), then:
               "final_rotor_rpm", "energy_dissipated_j", "wall_s"]
+#: summary value of each bearing -> CSV column suffix (the column is <bearing>_<suffix>)
+BEARING_FIELDS = {"max_contact_force_n": lambda sb: sb.get("max_contact_force_n"),
+                  "vertical_min_m": lambda sb: sb.get("vertical_displacement_range_m", [None, None])[0],
+                  "vertical_max_m": lambda sb: sb.get("vertical_displacement_range_m", [None, None])[1]}
+
+
+def csv_fields(bearing_names) -> list[str]:
+    per = [f"{b}_{k}" for b in bearing_names for k in BEARING_FIELDS]
+    return CSV_FIELDS[:9] + per + CSV_FIELDS[9:]
 
 
 def load_sweep(path) -> dict:
-    path = Path(path)
-    data = load_toml(path)
-    try:
-        t = Table(data, "")
+    with study_file(path) as (path, t):
         base = path.parent / t.string("scenario")
         if not base.is_file():
             raise InputError("scenario", str(base), "file not found")
@@ -92,17 +95,14 @@ def load_sweep(path) -> dict:
             if not isinstance(ranges, dict) or not ranges:
                 raise InputError("ranges", ranges, "give at least one key = {min, max}")
             n = t.integer("samples", 16)
-            rng = np.random.default_rng(t.integer("seed", 1, minimum=0))
+            seed = t.integer("seed", 1, minimum=0)
             keys = list(ranges)
             for k in keys:
                 range_spec(ranges[k], f"ranges.{k}")
-            for _ in range(n):
-                cases.append({k: float(rng.uniform(ranges[k]["min"], ranges[k]["max"])) for k in keys})
+            cases = sample_ranges(ranges, n, seed)
         t.raw("grid" if mode == "monte_carlo" else "ranges", None)
         t.finish()
         _check_cases(base, fixed, cases)
-    except InputError as err:
-        raise err.with_file(str(path)) from None
     return {"base": base, "mode": mode, "keys": keys, "fixed": fixed, "cases": cases, "plots": plots}
 
 
@@ -133,131 +133,9 @@ def _overrides(fixed: dict, case: dict) -> list[str]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Worker process set-up: single-threaded BLAS, Craig-Bampton cache, warm-up
-
-BLAS_ENV = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
-_BLAS_API = (("openblas_set_num_threads", "openblas_get_num_threads"),
-             ("openblas_set_num_threads64_", "openblas_get_num_threads64_"),
-             ("scipy_openblas_set_num_threads", "scipy_openblas_get_num_threads"),
-             ("scipy_openblas_set_num_threads64_", "scipy_openblas_get_num_threads64_"),
-             ("MKL_Set_Num_Threads", "MKL_Get_Max_Threads"))
-_ready = False
-
-
-def _blas_libraries() -> list:
-    """(set, get) ctypes functions of every BLAS library loaded in this process (Linux)."""
-    import ctypes
-
-    try:
-        with open("/proc/self/maps") as fh:
-            paths = {line.split()[-1] for line in fh if ".so" in line and ("blas" in line or "mkl" in line)}
-    except OSError:
-        return []
-    out, seen = [], set()
-    for path in sorted(paths):
-        try:
-            dll = ctypes.CDLL(path)
-        except OSError:
-            continue
-        for set_name, get_name in _BLAS_API:
-            f, g = getattr(dll, set_name, None), getattr(dll, get_name, None)
-            if f is not None and g is not None:
-                key = ctypes.cast(f, ctypes.c_void_p).value
-                if key not in seen:
-                    seen.add(key)
-                    f.argtypes, f.restype, g.argtypes, g.restype = [ctypes.c_int], None, [], ctypes.c_int
-                    out.append((f, g))
-                break
-    return out
-
-
-def limit_blas_threads(n: int = 1):
-    """Set every loaded BLAS library of this process (and processes it starts) to ``n`` threads.
-    Returns a function that restores the previous settings. Uses threadpoolctl when installed,
-    else OpenBLAS/MKL's own setters."""
-    env = {k: os.environ.get(k) for k in BLAS_ENV}
-    for k in BLAS_ENV:
-        os.environ[k] = str(n)
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:
-        libs = _blas_libraries()
-        before = [g() for f, g in libs]
-        for f, g in libs:
-            f(n)
-
-        def undo_libs():
-            for (f, g), m in zip(libs, before):
-                f(m)
-    else:
-        limits = threadpool_limits(n)
-        undo_libs = limits.restore_original_limits
-
-    def restore():
-        undo_libs()
-        for k, v in env.items():
-            if v is None:
-                os.environ.pop(k, None)
-            else:
-                os.environ[k] = v
-
-    return restore
-
-
-class _CraigBamptonCache:
-    """``landing.craig_bampton`` memoised on the exact FE matrices and reduction settings."""
-
-    def __init__(self, fn, size: int = 8):
-        self.fn, self.size, self.store, self.hits = fn, size, {}, 0
-
-    def key(self, fe, stations, n_modes, rotations):
-        h = hashlib.sha256()
-        for a in (fe.M, fe.K, fe.C, fe.G):
-            a = np.ascontiguousarray(a)
-            h.update(repr((a.shape, a.dtype.str)).encode())
-            h.update(a.tobytes())
-        nodes = tuple(fe.station_nodes.get(s) for s in stations)
-        return h.hexdigest(), tuple(stations), nodes, int(n_modes), bool(rotations)
-
-    def __call__(self, fe, stations, n_modes, rotations=False):
-        from dataclasses import replace
-
-        k = self.key(fe, stations, n_modes, rotations)
-        cb = self.store.get(k)
-        if cb is None:
-            cb = self.fn(fe, stations, n_modes, rotations)
-            if len(self.store) >= self.size:
-                self.store.pop(next(iter(self.store)))
-            self.store[k] = cb
-        else:
-            self.hits += 1
-        # fresh arrays and this case's FE model: callers may not alias the cached copy
-        return replace(cb, M=cb.M.copy(), K=cb.K.copy(), C=cb.C.copy(), G=cb.G.copy(), T=cb.T.copy(),
-                       names=list(cb.names), fe=fe, boundary=list(cb.boundary))
-
-
-def worker_setup():
-    """Once per worker process: single-threaded BLAS, Craig-Bampton cache, model code imported.
-    Returns a function that undoes it (for a parent process that forks workers)."""
-    global _ready
-    if _ready:
-        return lambda: None
-    restore_blas = limit_blas_threads(1)
-    from . import landing
-    from . import run  # noqa: F401  (exudyn, numba kernels, h5py)
-
-    original = landing.craig_bampton
-    if not isinstance(original, _CraigBamptonCache):
-        landing.craig_bampton = _CraigBamptonCache(original)
-    _ready = True
-
-    def undo():
-        global _ready
-        restore_blas()
-        landing.craig_bampton = original
-        _ready = False
-
-    return undo
+# Worker process set-up (single-threaded BLAS, reduction cache): rotorlanding.runner, shared with
+# the other studies; the names stay importable from here
+_CraigBamptonCache = ReductionCache
 
 
 def warm_up(job) -> None:
@@ -269,7 +147,7 @@ def warm_up(job) -> None:
     from .scenario import load_scenario
 
     try:
-        build_exudyn(build_spec(load_scenario(job[1], job[2])))
+        build_exudyn(build_spec(load_scenario(job[1], job[2]), reduction=reduction_cache()))
     except Exception:  # a bad case fails later, in run_case, where it is recorded
         pass
 
@@ -293,7 +171,7 @@ def run_case(job) -> dict:
     w0 = time.perf_counter()
     try:
         sc = load_scenario(base, overrides)
-        s = run_scenario(sc, folder, progress=False, plots=plots)
+        s = run_scenario(sc, folder, progress=False, plots=plots, reduction=reduction_cache())
         row.update(summary_row(s))
         if not s.get("complete", True):
             row["status"], row["error"] = "incomplete", s.get("message", "")
@@ -315,13 +193,10 @@ def _failed_row(idx: int, error: str, out_dir, details: str | None = None) -> di
 def summary_row(s: dict) -> dict:
     b = s.get("bearings", {})
     w = landing_whirl(s["whirl"])  # also re-derives summaries of finished cases written before
-    return {"whirl_direction": w["direction"], "whirl_frequency_hz": w["frequency_hz"],
+    return {"_bearings": list(b), "whirl_direction": w["direction"], "whirl_frequency_hz": w["frequency_hz"],
             "whirl_onset_s": w["onset_s"], "whirl_end_s": w.get("end_s"), "whirl_persistence": w.get("persistence"),
             "whirl_bearing": w["bearing"] if w["direction"] != "none" else None,
-            "DE_max_contact_force_n": b.get("DE", {}).get("max_contact_force_n"),
-            "NDE_max_contact_force_n": b.get("NDE", {}).get("max_contact_force_n"),
-            "DE_vertical_min_m": b.get("DE", {}).get("vertical_displacement_range_m", [None, None])[0],
-            "DE_vertical_max_m": b.get("DE", {}).get("vertical_displacement_range_m", [None, None])[1],
+            **{f"{name}_{k}": get(sb) for name, sb in b.items() for k, get in BEARING_FIELDS.items()},
             "final_rotor_rpm": s["speeds"]["final_rotor_rpm"],
             "energy_dissipated_j": s["energy"]["dissipated_total_j"]}
 
@@ -345,21 +220,20 @@ def _cost(fixed: dict, case: dict, base_t_end: float, base_step: float) -> float
 
 
 def _run_local(jobs: list, workers: int, idle=None) -> list[dict]:
-    """Run jobs (in the given order) in forked worker processes; a case whose worker dies is
-    retried alone and recorded as failed if it kills its worker again. ``idle()`` is called once
-    as soon as a worker has nothing left to do (the parent uses that core for its own work)."""
-    import multiprocessing as mp
+    """Run jobs (in the given order) in the runner's worker processes; a case whose worker dies is
+    retried alone and recorded as failed if it kills its worker again (the case's marker file
+    says which were running). ``idle()`` is called once as soon as a worker has nothing left to
+    do (the parent uses that core for its own work)."""
     from concurrent.futures import as_completed
     from concurrent.futures.process import BrokenProcessPool
 
-    ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else None
     results, pending, alone = [], list(jobs), []
     while pending or alone:
         batch, n = (pending, min(workers, len(pending))) if not alone else (alone[:1], 1)
         for j in batch:
             _marker(j).unlink(missing_ok=True)
         broken = []
-        with ProcessPoolExecutor(n, mp_context=ctx, initializer=worker_setup) as ex:
+        with executor(n) as ex:
             futs = {ex.submit(run_case, j): j for j in batch}
             inflight = len(futs)
             for f in as_completed(futs):
@@ -433,7 +307,8 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     for r in table:
         r.update({k: sw["cases"][r["case"]][k] for k in sw["keys"]})
     with open(out / "sweep.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=["case"] + sw["keys"] + CSV_FIELDS[1:], extrasaction="ignore")
+        bearings = next((r["_bearings"] for r in table if r.get("_bearings")), ["DE", "NDE"])
+        w = csv.DictWriter(fh, fieldnames=["case"] + sw["keys"] + csv_fields(bearings)[1:], extrasaction="ignore")
         w.writeheader()
         for r in table:
             w.writerow(r)

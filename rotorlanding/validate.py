@@ -21,11 +21,11 @@ import math
 import os
 import platform
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
+from .runner import run_all
 from .safeio import atomic_write_text
 
 
@@ -801,11 +801,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     jobs = [(k, f, sets, str(out), t_end, rig, True) for k, (f, sets) in CASES.items()]
     jobs += _ensemble_jobs(out, t_end, rig)
     wall0 = time.perf_counter()
-    if workers > 1:
-        with ProcessPoolExecutor(workers) as ex:
-            summaries = dict(ex.map(_run_case, jobs))
-    else:
-        summaries = dict(map(_run_case, jobs))
+    summaries = dict(run_all(_run_case, jobs, workers, failures="raise", blas_threads=None))
     members = {}
     for name in list(summaries):
         if "_drop" in name:

@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from user_forces.axial_rub import V_REG_DEFAULT, axial_rub, axial_rub_reference
+from user_forces.axial_rub import V_REG_DEFAULT, axial_rub, axial_rub_reference, axial_rub_slip_jacobian
 
 W = 733.0                  # 7000 rpm
 R1, R2 = 0.032, 0.045      # contact annulus about the race centre [m]
@@ -121,3 +121,41 @@ def test_laws_are_plain_python_without_numpy_or_exudyn():
     subprocess.run([sys.executable, "-c", code], check=True)
     out = axial_rub(*STATES["race_at_rest"], MU, V_REG_DEFAULT, R1, R2)
     assert type(out) is tuple and all(type(v) is float for v in out)
+
+
+def _slip_jacobian_columns(st):
+    """d(Fy, Fz, T_rot, T_race)/d(dy, dz, dvy, dvz, om_r, om_i) from axial_rub_slip_jacobian's sums
+    by the chain rule (plus T_rot's explicit lever arm), at a fixed contact patch."""
+    fy, fz, _, _, sc, d = rub(st, axial_rub_slip_jacobian)
+    dy, dz, om = st[0], st[1], st[4]
+    e = [(0.0, -om, 0.0), (om, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (dz, -dy, 1.0), (0.0, 0.0, -1.0)]
+    cols = []
+    for e0, e1, e2 in e:
+        dsy, dsz, dmi = (d[3 * i] * e0 + d[3 * i + 1] * e1 + d[3 * i + 2] * e2 for i in range(3))
+        cols.append([-sc * dsy, -sc * dsz, -sc * (dmi - dy * dsz + dz * dsy), sc * dmi])
+    cols[0][2] += -fz
+    cols[1][2] += fy
+    return cols
+
+
+@pytest.mark.parametrize("name", list(STATES))
+def test_slip_jacobian_has_the_laws_forces(name):
+    st = STATES[name]
+    assert rub(st, axial_rub_slip_jacobian)[:4] == rub(st)[:4]     # same quadrature, same rounding
+
+
+@pytest.mark.parametrize("name", [n for n, st in STATES.items() if st[6] == st[7] == 0.0])
+def test_slip_jacobian_against_central_differences(name):
+    """Without tilt the patch does not move with any of the six inputs, so the derivatives through
+    the slip field (plus the lever arm) are the whole derivative of axial_rub."""
+    st = STATES[name]
+    cols = _slip_jacobian_columns(st)
+    steps = (1e-9, 1e-9, 1e-6, 1e-6, 1e-4, 1e-4)
+    for j, h in enumerate(steps):
+        up, dn = list(st), list(st)
+        up[j] += h
+        dn[j] -= h
+        fd = [(a - b) / (2 * h) for a, b in zip(rub(tuple(up))[:4], rub(tuple(dn))[:4])]
+        scale = max(abs(x) for x in fd) + 1e-12
+        for i in range(4):
+            assert cols[j][i] == pytest.approx(fd[i], rel=1e-5, abs=1e-6 * scale), (j, i)

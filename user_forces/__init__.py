@@ -13,7 +13,10 @@ Modules (one law each):
 - ``ribbon``         : ribbon damper between outer race and housing (eqs 28-29) and Coulomb
   friction of the axial support on the outer race (eq 30).
 - ``axial``          : piecewise axial contact force of the rotor (eqs 2-5).
-- ``spin``           : windage torque of the spin model (eq 6).
+- ``spin``           : windage torque of the spin model (eq 6) and its derivative; the drive torque
+  of a speed-controlled motor (not in the paper).
+- ``amb``            : the AMB axis before the drop and the rotating unbalance (the levitated
+  state, not in the paper's equations).
 - ``axial_rub``      : friction between the rotor sleeve face and the inner-race thrust face,
   integrated over the annulus (eqs 18-21; the Wilkes forward-whirl mechanism).
 

@@ -100,7 +100,7 @@ _GL_ARC = _gauss_legendre(N_THETA)
 _CIRCLE = _uniform_circle(N_THETA)
 _W_CIRCLE = 2.0 * pi / N_THETA
 
-_ZERO5 = (0.0, 0.0, 0.0, 0.0, 0.0)
+_ZERO5 = (0.0, 0.0, 0.0, 0.0, 0.0)  # the reference rule's "no contact"
 
 
 def axial_rub(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, f_axial,
@@ -118,10 +118,43 @@ def axial_rub(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, 
 
     Returns (Fy_rotor, Fz_rotor, T_rotor, T_race, P_diss); the force on the race is
     (-Fy_rotor, -Fz_rotor); torques about each body's own centre; P_diss >= 0.
+    Compiled callers compile :func:`axial_rub_quadrature` (this is its first five values).
+    """
+    r = axial_rub_quadrature(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, f_axial,
+                             face_sign, mu_ax, v_reg, r1, r2, False)
+    return r[0], r[1], r[2], r[3], r[4]
+
+
+def axial_rub_slip_jacobian(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, f_axial,
+                            face_sign, mu_ax, v_reg, r1, r2):
+    """``axial_rub`` with the forward-mode derivatives of its quadrature sums, for the analytic
+    Jacobian: (Fy_rotor, Fz_rotor, T_rotor, T_race, sc, d), see :func:`axial_rub_quadrature`."""
+    r = axial_rub_quadrature(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, f_axial,
+                             face_sign, mu_ax, v_reg, r1, r2, True)
+    return r[0], r[1], r[2], r[3], r[5], r[6]
+
+
+_ZERO9 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+_ZERO7 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, _ZERO9)
+
+
+def axial_rub_quadrature(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, f_axial,
+                         face_sign, mu_ax, v_reg, r1, r2, derivatives):
+    """The one quadrature behind ``axial_rub`` and ``axial_rub_slip_jacobian`` (arguments as
+    ``axial_rub``; ``derivatives``: also the forward-mode derivatives).
+
+    With the slip field w = (cy0 - dom rho sin, cz0 + dom rho cos), cy0 = dvy + Omega_r dz,
+    cz0 = dvz - Omega_r dy, dom = Omega_r - Omega_i, the rub is F_rotor = -sc (sy, sz), T_rotor =
+    -sc (mi - dy sz + dz sy), T_race = sc mi, with sc = mu_ax |F_ax| / sum(q) and (sy, sz, mi) sums
+    over the patch. Returns (Fy_rotor, Fz_rotor, T_rotor, T_race, P_diss, sc, d) with d =
+    d(sy, sz, mi)/d(cy0, cz0, dom) row-major (9 floats, zeros without ``derivatives``) at a fixed
+    contact patch; the chain rule to the caller's coordinates, the explicit d in T_rotor and the
+    patch's dependence on the axial approach A (which moves with dy, dz, delta_ax and the tilt) are
+    the caller's. Without contact everything is 0.
     """
     fa = abs(f_axial)
     if fa == 0.0 or mu_ax == 0.0:
-        return _ZERO5
+        return _ZERO7
     s = face_sign
     a0 = delta_ax + s * (beta * dy - alpha * dz)
     ac = -s * beta
@@ -136,12 +169,14 @@ def axial_rub(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, 
             rb = rstar
             rc = rstar
     elif a0 <= 0.0:
-        return _ZERO5
+        return _ZERO7
     cy0 = dvy + omega_rotor * dz
     cz0 = dvz - omega_rotor * dy
     dom = omega_rotor - omega_race
     vr2 = v_reg * v_reg
     gs = sy = sz = mi = pw = 0.0
+    # d(sy, sz, mi)/d(cy0, cz0, dom), row-major
+    d00 = d01 = d02 = d10 = d11 = d12 = d20 = d21 = d22 = 0.0
     for ip in (0, 1):
         if ip == 0:
             lo, hi = ra, rb
@@ -155,51 +190,58 @@ def axial_rub(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax, 
             rho = mm + hh * xj
             wr = hh * wj * rho
             bb = kk * rho
-            if a0 >= bb:          # full circle in contact: periodic trapezoid
-                wt = wr * _W_CIRCLE
-                for c, sn in _CIRCLE:
-                    g = a0 + rho * (ac * c + as_ * sn)
-                    if g <= 0.0:
-                        continue
-                    q = wt * g
-                    pcy = rho * c
-                    pcz = rho * sn
-                    wy = cy0 - dom * pcz
-                    wz = cz0 + dom * pcy
-                    inv = q / sqrt(wy * wy + wz * wz + vr2)
-                    uy = wy * inv
-                    uz = wz * inv
-                    gs += q
-                    sy += uy
-                    sz += uz
-                    mi += pcy * uz - pcz * uy
-                    pw += wy * uy + wz * uz
-            elif a0 > -bb:        # loaded arc th0 +- phi: Gauss-Legendre on the arc
+            full = a0 >= bb       # full circle in contact: periodic trapezoid
+            if not full and a0 <= -bb:
+                continue
+            phi = 0.0
+            if not full:          # loaded arc th0 +- phi: Gauss-Legendre on the arc
                 phi = acos(-a0 / bb)
-                for eta, we in _GL_ARC:
-                    th = th0 + phi * eta
+            for k in range(N_THETA):
+                if full:
+                    c, sn = _CIRCLE[k]
+                    wq = wr * _W_CIRCLE
+                else:
+                    th = th0 + phi * _GL_ARC[k][0]
                     c = cos(th)
                     sn = sin(th)
-                    g = a0 + rho * (ac * c + as_ * sn)
-                    if g <= 0.0:
-                        continue
-                    q = wr * phi * we * g
-                    pcy = rho * c
-                    pcz = rho * sn
-                    wy = cy0 - dom * pcz
-                    wz = cz0 + dom * pcy
-                    inv = q / sqrt(wy * wy + wz * wz + vr2)
-                    uy = wy * inv
-                    uz = wz * inv
-                    gs += q
-                    sy += uy
-                    sz += uz
-                    mi += pcy * uz - pcz * uy
-                    pw += wy * uy + wz * uz
+                    wq = wr * phi * _GL_ARC[k][1]
+                g = a0 + rho * (ac * c + as_ * sn)
+                if g <= 0.0:
+                    continue
+                q = wq * g
+                pcy = rho * c
+                pcz = rho * sn
+                wy = cy0 - dom * pcz
+                wz = cz0 + dom * pcy
+                m2 = wy * wy + wz * wz + vr2
+                a = q / sqrt(m2)
+                uy = wy * a
+                uz = wz * a
+                gs += q
+                sy += uy
+                sz += uz
+                mi += pcy * uz - pcz * uy
+                pw += wy * uy + wz * uz
+                if derivatives:
+                    uyy = a * (1.0 - wy * wy / m2)
+                    uyz = -a * wy * wz / m2
+                    uzz = a * (1.0 - wz * wz / m2)
+                    duy2 = -pcz * uyy + pcy * uyz
+                    duz2 = -pcz * uyz + pcy * uzz
+                    d00 += uyy
+                    d10 += uyz
+                    d20 += pcy * uyz - pcz * uyy
+                    d01 += uyz
+                    d11 += uzz
+                    d21 += pcy * uzz - pcz * uyz
+                    d02 += duy2
+                    d12 += duz2
+                    d22 += pcy * duz2 - pcz * duy2
     if gs <= 0.0:
-        return _ZERO5
+        return _ZERO7
     sc = mu_ax * fa / gs
-    return (-sc * sy, -sc * sz, -sc * (mi - dy * sz + dz * sy), sc * mi, sc * pw)
+    return (-sc * sy, -sc * sz, -sc * (mi - dy * sz + dz * sy), sc * mi, sc * pw, sc,
+            (d00, d01, d02, d10, d11, d12, d20, d21, d22))
 
 
 def axial_rub_reference(dy, dz, dvy, dvz, omega_rotor, omega_race, alpha, beta, delta_ax,

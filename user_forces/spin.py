@@ -49,3 +49,19 @@ def windage_coefficients_cylinder(radius, length, omega_ref, rho=1.2, mu_air=1.8
     c_w1 = 4.0 * pi * mu_air * radius * radius * length
     c_w2 = c_m * pi * rho * radius ** 4 * length
     return c_w1, c_w2
+
+
+def drive_torque(omega, gain, omega0):
+    """Torque of a speed-controlled drive on the rotor about +x [N m]: gain (omega0 - Omega).
+
+    Not in the paper (its landings coast, spin.drive = "coast"): a proportional speed loop holding
+    the set speed omega0, for rigs whose motor keeps driving after the drop (spin.drive =
+    "constant"). Its work gain (omega0 - Omega) Omega is an input of the energy balance.
+    omega, omega0 [rad/s]; gain [N m s] >= 0.
+    """
+    return gain * (omega0 - omega)
+
+
+def windage_torque_derivative(omega, c_w1, c_w2):
+    """d T_wind / d Omega [N m s]: -(c_w1 + 2 c_w2 |Omega|) (for analytic Jacobians)."""
+    return -(c_w1 + 2.0 * c_w2 * abs(omega))

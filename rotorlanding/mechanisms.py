@@ -1,0 +1,573 @@
+"""The mechanism registry and the output schema: every physical mechanism of the landing model in
+one entry, and every output series declared once, with its unit.
+
+A :class:`Mechanism` names what acts (a law of ``user_forces``), where (the coordinates it acts
+on), when (its effect switches, resolved once in :mod:`rotorlanding.params`), what it does to the
+energy balance (dissipation entries, input-work entries, potential and kinetic energy), and which
+output series it declares (:class:`Output`: name, unit, per bearing or not). Consumers loop over
+:data:`REGISTRY` instead of naming mechanisms:
+
+- :func:`rotorlanding.postprocess.evaluate` calls each active mechanism's ``post`` hook on the
+  stored states; the energy balance (``energy_summary``) sums :func:`dissipation_entries` and
+  :func:`input_entries`;
+- :func:`series_units` gives every series its unit (``results.h5``, the coast-down file), so no
+  unit is guessed from a name's suffix;
+- :func:`rotor_force` is the force on the rotor at a bearing (the sum of the outputs declared with
+  ``on_rotor``): the summary's peak contact force, the coast-down's per-chunk peak, the sweep's
+  CSV and the force plots read it;
+- a mechanism that is not compiled into :mod:`rotorlanding.bearing_kernel` brings its own solver
+  hook (``force``/``jacobian`` over ``forces.BEARING_LOCAL``), its parameters (:class:`Param`, read
+  from each ``[bearings.NAME]`` table) and its effect switch (``effect``, added to
+  ``scenario.EFFECTS``): :mod:`rotorlanding.exudyn_model` adds one connector per bearing for it,
+  :mod:`rotorlanding.forces` adds it to the Python closure.
+
+"Off contributes nothing" (PyBaMM's ``NoSEI`` idea): a mechanism whose ``active(spec, laws)`` is
+False is not evaluated, adds no solver object, and its declared series and energy entries are
+zeros; no later code branches on the switch. The laws of the built-in mechanisms (radial contact
+to outer-race Coulomb) are compiled into the kernel from the same ``user_forces`` functions the
+hooks here call (tests/test_bearing_jacobian.py checks the two agree).
+
+Order matters and is the order of this file's :data:`REGISTRY`: rotor-scope hooks run before the
+bearing-scope ones (the bearings read the axial force), per bearing in registry order (the ball
+drag reads the ball force), and the energy entries are listed (and summed) in registry order.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from user_forces.axial import axial_force
+from user_forces.axial_rub import axial_rub
+from user_forces.ball_bearing import ball_force, harris_palmgren_fast, worn_drag_torque, worn_friction_with_derivatives
+from user_forces.radial_contact import radial_contact
+from user_forces.ribbon import outer_race_friction, ribbon_force
+from user_forces.amb import amb_force, unbalance_force
+from user_forces.spin import drive_torque, windage_torque, windage_torque_derivative
+
+from .params import OMEGA_REG_HP
+from .timoshenko import GRAVITY
+
+
+@dataclass(frozen=True)
+class Output:
+    """One output series. A per-bearing series is stored as ``<bearing>_<name>``. ``on_rotor``
+    ('y' or 'z'): the series is that component of a force on the rotor at the bearing station."""
+
+    name: str
+    unit: str
+    per_bearing: bool = False
+    doc: str = ""
+    on_rotor: str = ""
+
+
+@dataclass(frozen=True)
+class Param:
+    """A per-bearing input of a mechanism that is not part of ``scenario.Bearing`` (read from
+    ``[bearings.NAME].key``, >= 0); ``BearingLaws.extra[key]`` holds it, 0 with the effect off."""
+
+    key: str
+    unit: str
+    default: float
+    doc: str = ""
+
+
+def _always(spec, laws) -> bool:
+    return True
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """One physical mechanism: what acts, where, when, its energy entries and its outputs (the
+    module docstring says who reads which field)."""
+
+    name: str
+    scope: str                          # "rotor" or "bearing"
+    coordinates: tuple[str, ...]        # bearing: forces.BEARING_LOCAL names; rotor: landing coordinate kinds
+    laws: tuple[Callable, ...]          # the user_forces functions it evaluates
+    switches: tuple[str, ...] = ()      # [effects] names resolved into its parameters (params.py)
+    dissipation: tuple[str, ...] = ()   # energy entries: power_<e>_w, dissipated_<e>_j (>= 0)
+    inputs: tuple[str, ...] = ()        # energy entries: input_<e>_j (work put in)
+    outputs: tuple[Output, ...] = ()
+    post: Callable | None = None        # post(ev, laws) on the stored states (see Evaluation)
+    active: Callable = _always          # active(spec, laws); laws = BearingLaws or RotorLaws
+    doc: str = ""
+    # a mechanism outside the compiled kernel brings these (empty for the built-in ones):
+    effect: str = ""                    # a new [effects] switch it adds (default: default_on)
+    default_on: bool = False
+    params: tuple[Param, ...] = ()
+    force: Callable | None = None       # force(x, q, v) -> 9 forces on BEARING_LOCAL, x = laws.extra
+    jacobian: Callable | None = None    # jacobian(x, q, v) -> (dF/dq, dF/dv), 9 x 9 lists
+
+
+@dataclass
+class Evaluation:
+    """What a ``post`` hook reads and writes. Per-sample quantities are Python lists (the laws
+    take plain floats); contributions are added (``out``, ``dissipated``, ``work``, ``ekin``,
+    ``epot``) in registry order, so every element gets its terms in the order one hand-written loop
+    over the bearings would add them (which keeps the series bit for bit those of that loop)."""
+
+    spec: object
+    t: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    series: dict = field(default_factory=dict)      # full series name -> array
+    power: dict = field(default_factory=dict)       # dissipation entry -> W
+    inputs: dict = field(default_factory=dict)      # input entry -> W
+    ekin: np.ndarray | None = None
+    epot: np.ndarray | None = None
+    bearing: object = None                          # the BearingSpec being evaluated
+    kin: dict = field(default_factory=dict)         # the bearing's kinematics (lists), see _kinematics
+
+    def out(self, name: str, values) -> None:
+        """Add to a declared series (of the current bearing when per bearing)."""
+        self.series[name if self.bearing is None else self.bearing.name + "_" + name] += values
+
+    def dissipated(self, entry: str, values) -> None:
+        self.power[entry] += values
+
+    def work(self, entry: str, values) -> None:
+        self.inputs[entry] += values
+
+
+# --------------------------------------------------------------------------------------------
+# rotor scope
+
+
+def _post_windage(ev: Evaluation, rl) -> None:
+    """Windage, eq 6: P = -T_wind Omega >= 0."""
+    omega = ev.v[:, ev.spec.i_theta]
+    tw = np.array([windage_torque(w, rl.c_w1, rl.c_w2) for w in omega])
+    ev.dissipated("windage", -tw * omega)
+
+
+def axial_potential(x: np.ndarray, a) -> np.ndarray:
+    """Elastic potential of the piecewise axial law (eqs 4-5), V(x) with -dV/dx = F_ax(x, 0)."""
+    k1 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_ws)
+    k2 = 1.0 / (1.0 / a.k_cb + 1.0 / a.k_h)
+    s = np.maximum(np.abs(x) - a.cl_ax, 0.0)
+    s1 = np.minimum(s, a.delta_m)
+    s2 = np.maximum(s - a.delta_m, 0.0)
+    return 0.5 * k1 * s1**2 + k1 * a.delta_m * s2 + 0.5 * k2 * s2**2
+
+
+def _post_axial(ev: Evaluation, rl) -> None:
+    """Axial contact, eqs 3-5: its force (read by the bearings' face laws), potential, damping."""
+    a = ev.spec.scenario.axial
+    x, xd = ev.q[:, ev.spec.i_axial], ev.v[:, ev.spec.i_axial]
+    f_el = np.array([axial_force(xi, 0.0, a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax) for xi in x])
+    f = np.array([axial_force(xi, vi, a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax) for xi, vi in zip(x, xd)])
+    ev.out("axial_force_n", f)
+    ev.dissipated("axial_damping", -(f - f_el) * xd)
+    ev.epot += axial_potential(x, a)
+
+
+def _post_rotor(ev: Evaluation, rl) -> None:
+    """The flexible rotor body (eq 1): kinetic energy (lateral, spin, axial), elastic energy and
+    gravity of the lateral coordinates, structural damping."""
+    spec, n_lat = ev.spec, ev.spec.n_lat
+    ql, vl = ev.q[:, :n_lat], ev.v[:, :n_lat]
+    omega, xd = ev.v[:, spec.i_theta], ev.v[:, spec.i_axial]
+    ev.ekin += 0.5 * np.einsum("ti,ij,tj->t", vl, spec.M, vl) + 0.5 * spec.rotor_polar_inertia * omega**2 \
+        + 0.5 * spec.rotor_mass * xd**2
+    ev.epot += 0.5 * np.einsum("ti,ij,tj->t", ql, spec.K, ql) - ql @ spec.f_gravity
+    ev.dissipated("rotor_damping", np.einsum("ti,ij,tj->t", vl, spec.C, vl))
+
+
+def _post_amb(ev: Evaluation, rl) -> None:
+    """AMB hold before the drop (bias, stiffness, damping; radial and axial): its work."""
+    spec, t, q, v = ev.spec, ev.t, ev.q, ev.v
+    sc = spec.scenario
+    amb_on = (t < sc.amb.t_drop) | (not sc.amb.drop_radial)
+    for iy, iz in spec.amb_rows:
+        for i in (iy, iz):
+            f = amb_force(q[:, i], v[:, i], -spec.f_gravity[i], sc.amb.stiffness, sc.amb.damping)
+            ev.work("amb", np.where(amb_on, f * v[:, i], 0.0))
+    x, xd = q[:, spec.i_axial], v[:, spec.i_axial]
+    thrust = np.array([spec.thrust(ti) for ti in t])
+    ax_on = (t < sc.amb.t_drop) | (not sc.amb.drop_axial)
+    f = amb_force(x, xd, -thrust, sc.amb.axial_stiffness, sc.amb.axial_damping)
+    ev.work("amb", np.where(ax_on, f * xd, 0.0))
+
+
+def _post_thrust(ev: Evaluation, rl) -> None:
+    thrust = np.array([ev.spec.thrust(ti) for ti in ev.t])
+    ev.work("thrust", thrust * ev.v[:, ev.spec.i_axial])
+
+
+def _post_drive(ev: Evaluation, rl) -> None:
+    """Constant-speed drive: T = gain (omega0 - Omega), its work T Omega."""
+    omega = ev.v[:, ev.spec.i_theta]
+    ev.work("drive", drive_torque(omega, rl.drive_gain, rl.omega0) * omega)
+
+
+def _post_unbalance(ev: Evaluation, rl) -> None:
+    """Rotating unbalance force m e Omega^2 at its station: its work on the lateral motion."""
+    spec = ev.spec
+    sc = spec.scenario
+    ry, rz = spec.unbalance_rows
+    vl = ev.v[:, :spec.n_lat]
+    omega = ev.v[:, spec.i_theta]
+    ang = ev.q[:, spec.i_theta] + math.radians(sc.unbalance.phase_deg)
+    f = np.array([unbalance_force(w, a, sc.unbalance.magnitude) for w, a in zip(omega.tolist(), ang.tolist())])
+    ev.work("unbalance", f[:, 0] * (vl @ ry) + f[:, 1] * (vl @ rz))
+
+
+# --------------------------------------------------------------------------------------------
+# bearing scope: the kinematics every bearing hook reads (lists of floats, one per sample)
+
+
+def _kinematics(ev: Evaluation, b) -> dict:
+    q, v, spec = ev.q, ev.v, ev.spec
+    s, r, o = b.i_station, b.i_race, b.i_outer
+    f_ax = ev.series["axial_force_n"]
+    return {
+        "dy": (q[:, s] - q[:, r]).tolist(), "dz": (q[:, s + 1] - q[:, r + 1]).tolist(),
+        "dvy": (v[:, s] - v[:, r]).tolist(), "dvz": (v[:, s + 1] - v[:, r + 1]).tolist(),
+        "omega": v[:, spec.i_theta].tolist(), "wi": v[:, r + 2].tolist(), "phi_i": q[:, r + 2].tolist(),
+        "ey": (q[:, r] - q[:, o]).tolist(), "ez": (q[:, r + 1] - q[:, o + 1]).tolist(),
+        "evy": (v[:, r] - v[:, o]).tolist(), "evz": (v[:, r + 1] - v[:, o + 1]).tolist(),
+        "oy": q[:, o].tolist(), "oz": q[:, o + 1].tolist(), "ovy": v[:, o].tolist(), "ovz": v[:, o + 1].tolist(),
+        "x": q[:, spec.i_axial].tolist(),
+        # the face's normal load: the axial contact force where this bearing takes the thrust
+        "n_ax": np.abs(f_ax).tolist() if b.laws.axial_face else [0.0] * len(ev.t),
+    }
+
+
+def _post_radial(ev: Evaluation, L) -> None:
+    """Radial contact, eqs 10-17: forces, Hertz energy, friction and Hunt-Crossley powers."""
+    k = ev.kin
+    nt = len(ev.t)
+    cols = [np.zeros(nt) for _ in range(5)]
+    pf_, pd_, ep_ = np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    for i in range(nt):
+        dy, dz, dvy, dvz = k["dy"][i], k["dz"][i], k["dvy"][i], k["dvz"][i]
+        fy, fz, _, _, fn, delta, vs, pf = radial_contact(dy, dz, dvy, dvz, k["omega"][i], k["wi"][i], L.clearance,
+                                                         L.k_hertz, L.exponent, L.k_visc, L.mu_rad, L.v_reg,
+                                                         L.sleeve_radius, L.race_radius)
+        cols[0][i], cols[1][i], cols[2][i], cols[4][i] = fy, fz, fn, vs
+        if delta > 0:
+            cols[3][i] = delta
+            dist = math.hypot(dy, dz)
+            ddot = (dy * dvy + dz * dvz) / dist
+            pd_[i] = (fn - L.k_hertz * delta**L.exponent) * ddot
+            ep_[i] = L.k_hertz * delta ** (L.exponent + 1) / (L.exponent + 1)
+        pf_[i] = pf
+    for o, c in zip(RADIAL_CONTACT.outputs, cols):
+        ev.out(o.name, c)
+    ev.dissipated("contact_damping", pd_)
+    ev.epot += ep_
+    ev.dissipated("radial_friction", pf_)
+
+
+def _post_rub(ev: Evaluation, L) -> None:
+    """Axial rub on the thrust face, eqs 18-21 (acts while the face carries load)."""
+    k, b, a = ev.kin, ev.bearing, ev.spec.scenario.axial
+    nt, n_lat = len(ev.t), ev.spec.n_lat
+    gy, gz, p = np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    for i in range(nt):
+        n_ax = k["n_ax"][i]
+        if n_ax > 0:
+            x, ql = k["x"][i], ev.q[i, :n_lat]
+            gy[i], gz[i], _, _, p[i] = axial_rub(k["dy"][i], k["dz"][i], k["dvy"][i], k["dvz"][i], k["omega"][i],
+                                                 k["wi"][i], float(b.tilt_alpha @ ql), float(b.tilt_beta @ ql),
+                                                 abs(x) - a.cl_ax, n_ax,
+                                                 1.0 if x >= 0 else -1.0, L.mu_ax, L.v_reg_axial,
+                                                 L.face_inner_radius, L.face_outer_radius)
+    ev.out("rub_force_y_n", gy)
+    ev.out("rub_force_z_n", gz)
+    ev.dissipated("axial_rub", p)
+
+
+def _post_balls(ev: Evaluation, L) -> None:
+    """Ball set, eq 22: force on the inner race, its elastic energy and damping."""
+    k = ev.kin
+    nt = len(ev.t)
+    by, bz, ep = np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    for i in range(nt):
+        ey, ez = k["ey"][i], k["ez"][i]
+        by[i], bz[i] = ball_force(ey, ez, L.k_b1, L.k_b2, k["evy"][i], k["evz"][i], L.c_b)
+        rr = math.hypot(ey, ez)
+        ep[i] = L.k_b1 * rr * rr / 2 + L.k_b2 * rr**3 / 3
+    ev.out("ball_force_y_n", by)
+    ev.out("ball_force_z_n", bz)
+    ev.epot += ep
+    ev.dissipated("ball_damping", L.c_b * (np.square(k["evy"]) + np.square(k["evz"])))
+
+
+def _post_ball_drag(ev: Evaluation, L) -> None:
+    """Harris-Palmgren drag on the inner race, eqs 23-27 (load = ball force and face load)."""
+    k, pre = ev.kin, ev.bearing.name + "_"
+    by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
+    thp = np.array([harris_palmgren_fast(w, math.hypot(y, z), n, L.hp)
+                    for w, y, z, n in zip(k["wi"], by, bz, k["n_ax"])])
+    ev.out("drag_torque_nm", thp)
+    ev.dissipated("ball_drag", -thp * np.asarray(k["wi"]))
+
+
+def _post_worn_drag(ev: Evaluation, L) -> None:
+    """Worn catcher bearing's drag torque (docs/paper_corrections.md), growing with race angle: the
+    load-independent part and the load-proportional one (load = ball force and face load)."""
+    k, pre = ev.kin, ev.bearing.name + "_"
+    tw = np.array([worn_drag_torque(w, L.worn_drag_torque, OMEGA_REG_HP, phi, L.worn_drag_growth_angle)
+                   for w, phi in zip(k["wi"], k["phi_i"])])
+    if L.worn_drag_friction > 0:
+        by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
+        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n, phi, L.worn)[0]
+                            for w, y, z, n, phi in zip(k["wi"], by, bz, k["n_ax"], k["phi_i"])])
+    ev.out("drag_torque_nm", tw)
+    ev.dissipated("worn_bearing_drag", -tw * np.asarray(k["wi"]))
+
+
+def _post_ribbon(ev: Evaluation, L) -> None:
+    """Ribbon damper, eqs 28-29: force on the outer race, elastic energy, viscous and
+    cross-coupled (hysteretic) powers."""
+    k = ev.kin
+    nt = len(ev.t)
+    gy, gz, ep, pc = np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
+    for i in range(nt):
+        oy, oz, ovy, ovz = k["oy"][i], k["oz"][i], k["ovy"][i], k["ovz"][i]
+        gy[i], gz[i] = y_, z_ = ribbon_force(oy, oz, ovy, ovz, L.k_rib, L.c_rib, L.eta, L.v_reg)
+        ep[i] = 0.5 * L.k_rib * (oy * oy + oz * oz)
+        ccy, ccz = y_ + L.c_rib * ovy + L.k_rib * oy, z_ + L.c_rib * ovz + L.k_rib * oz
+        pc[i] = -(ccy * ovy + ccz * ovz)
+    ev.out("ribbon_force_y_n", gy)
+    ev.out("ribbon_force_z_n", gz)
+    ev.epot += ep
+    ev.dissipated("ribbon_damping", L.c_rib * (np.square(k["ovy"]) + np.square(k["ovz"])))
+    ev.dissipated("ribbon_cross_coupling", pc)
+
+
+def _post_outer_coulomb(ev: Evaluation, L) -> None:
+    """Coulomb friction of the axial support on the loaded outer race, eq 30."""
+    k = ev.kin
+    p = np.zeros(len(ev.t))
+    for i, n_ax in enumerate(k["n_ax"]):
+        if n_ax > 0:
+            ovy, ovz = k["ovy"][i], k["ovz"][i]
+            hy, hz = outer_race_friction(ovy, ovz, n_ax, L.mu_d, L.v_reg)
+            p[i] = -(hy * ovy + hz * ovz)
+    ev.dissipated("outer_race_coulomb", p)
+
+
+def _post_races(ev: Evaluation, L) -> None:
+    """The races as bodies (eqs 7-9): kinetic energy, gravity, viscous damping to the housing."""
+    q, v, b = ev.q, ev.v, ev.bearing
+    r, o = b.i_race, b.i_outer
+    ev.dissipated("race_damping", L.inner_race_damping * (v[:, r] ** 2 + v[:, r + 1] ** 2)
+                  + L.outer_race_damping * (v[:, o] ** 2 + v[:, o + 1] ** 2))
+    ev.ekin += 0.5 * L.inner_race_mass * (v[:, r] ** 2 + v[:, r + 1] ** 2) \
+        + 0.5 * L.inner_race_inertia * v[:, r + 2] ** 2 + 0.5 * L.outer_race_mass * (v[:, o] ** 2 + v[:, o + 1] ** 2)
+    ev.epot += GRAVITY * (L.inner_race_mass * q[:, r + 1] + L.outer_race_mass * q[:, o + 1])
+
+
+# --------------------------------------------------------------------------------------------
+# the registry
+
+RADIAL_CONTACT = Mechanism(
+    "radial_contact", "bearing", ("station_y", "station_z", "theta", "race_y", "race_z", "race_phi"),
+    (radial_contact,), ("radial_friction", "contact_damping"), ("radial_friction", "contact_damping"),
+    outputs=(Output("contact_force_y_n", "N", True, "race contact force on the rotor, y", "y"),
+             Output("contact_force_z_n", "N", True, "race contact force on the rotor, z", "z"),
+             Output("normal_force_n", "N", True, "contact normal force F_N (eq 15)"),
+             Output("penetration_m", "m", True, "Hertz penetration delta (eq 14)"),
+             Output("slip_velocity_m_s", "m/s", True, "slip velocity of the contact point (eq 16)")),
+    post=_post_radial, doc="sleeve / inner-race contact, eqs 10-17")
+
+REGISTRY: tuple[Mechanism, ...] = (
+    # bearing scope (the dissipation entries of both scopes are listed and summed in this order)
+    RADIAL_CONTACT,
+    Mechanism("axial_rub", "bearing", ("station_y", "station_z", "theta", "x_axial", "race_y", "race_z", "race_phi"),
+              (axial_rub,), ("axial_rub",), ("axial_rub",),
+              outputs=(Output("rub_force_y_n", "N", True, "face friction force on the rotor, y", "y"),
+                       Output("rub_force_z_n", "N", True, "face friction force on the rotor, z", "z")),
+              post=_post_rub, active=lambda spec, L: L.axial_rub, doc="thrust-face friction, eqs 18-21"),
+    Mechanism("balls", "bearing", ("race_y", "race_z", "outer_y", "outer_z"), (ball_force,), (), ("ball_damping",),
+              outputs=(Output("ball_force_y_n", "N", True, "ball-set force on the inner race, y"),
+                       Output("ball_force_z_n", "N", True, "ball-set force on the inner race, z")),
+              post=_post_balls, doc="ball set, eq 22"),
+    Mechanism("ball_drag", "bearing", ("race_phi", "x_axial"), (harris_palmgren_fast,), ("ball_drag",),
+              ("ball_drag",), outputs=(Output("drag_torque_nm", "N m", True, "drag torque on the inner race"),),
+              post=_post_ball_drag, active=lambda spec, L: L.ball_drag, doc="Harris-Palmgren drag, eqs 23-27"),
+    Mechanism("worn_bearing_drag", "bearing", ("race_phi", "race_y", "race_z", "outer_y", "outer_z", "x_axial"),
+              (worn_drag_torque, worn_friction_with_derivatives), ("worn_bearing_drag",),
+              ("worn_bearing_drag",), outputs=(Output("drag_torque_nm", "N m", True, "drag torque on the inner race"),),
+              post=_post_worn_drag, active=lambda spec, L: L.worn_drag_torque > 0 or L.worn_drag_friction > 0,
+              doc="worn bearing's drag (docs/paper_corrections.md)"),
+    Mechanism("ribbon", "bearing", ("outer_y", "outer_z"), (ribbon_force,), ("ribbon_cross_coupling",),
+              ("ribbon_damping", "ribbon_cross_coupling"),
+              outputs=(Output("ribbon_force_y_n", "N", True, "ribbon force on the outer race, y"),
+                       Output("ribbon_force_z_n", "N", True, "ribbon force on the outer race, z")),
+              post=_post_ribbon, doc="ribbon damper, eqs 28-29"),
+    Mechanism("outer_race_coulomb", "bearing", ("outer_y", "outer_z", "x_axial"), (outer_race_friction,),
+              ("outer_race_coulomb",), ("outer_race_coulomb",), post=_post_outer_coulomb,
+              active=lambda spec, L: L.outer_coulomb, doc="outer race / housing friction, eq 30"),
+    # rotor scope
+    Mechanism("windage", "rotor", ("theta",), (windage_torque,), ("windage",), ("windage",), post=_post_windage,
+              active=lambda spec, rl: rl.windage, doc="windage torque, eq 6"),
+    Mechanism("axial_contact", "rotor", ("x_axial",), (axial_force,), (), ("axial_damping",),
+              outputs=(Output("axial_force_n", "N", False, "axial contact force on the rotor (eqs 3-5)"),),
+              post=_post_axial, doc="axial contact, eqs 2-5"),
+    Mechanism("rotor", "rotor", ("lateral", "theta", "x_axial"), (), ("gyroscopic", "rotor_flexibility"),
+              ("rotor_damping",), post=_post_rotor, doc="the flexible rotor body, eq 1"),
+    # bearing scope, after the rotor: the races' energies come last in each bearing's sum
+    Mechanism("races", "bearing", ("race_y", "race_z", "race_phi", "outer_y", "outer_z"), (), (), ("race_damping",),
+              post=_post_races, doc="races as bodies, eqs 7-9"),
+    # work put in (listed and summed in this order)
+    Mechanism("amb_hold", "rotor", ("lateral", "x_axial"), (), (), inputs=("amb",), post=_post_amb,
+              doc="AMBs before the drop"),
+    Mechanism("thrust", "rotor", ("x_axial",), (), (), inputs=("thrust",), post=_post_thrust, doc="axial thrust"),
+    Mechanism("drive", "rotor", ("theta",), (), (), inputs=("drive",), post=_post_drive,
+              active=lambda spec, rl: rl.constant_drive, doc="constant-speed drive"),
+    Mechanism("unbalance", "rotor", ("lateral", "theta"), (), ("unbalance",), inputs=("unbalance",),
+              post=_post_unbalance, active=lambda spec, rl: spec.unbalance_rows is not None,
+              doc="rotating unbalance"),
+)
+
+# --------------------------------------------------------------------------------------------
+# mechanisms outside the compiled kernel: the whole mechanism is its entry here (recipe in
+# docs/architecture.md)
+
+def _race_windage_force(x, q, v):
+    """Air and grease drag on the spinning inner race: the drag law of eq 6 (``windage_torque``)
+    with the race's own coefficients, acting on race_phi (BEARING_LOCAL index 6)."""
+    return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, windage_torque(v[6], x["race_windage_c1"], x["race_windage_c2"]), 0.0, 0.0)
+
+
+def _race_windage_jacobian(x, q, v):
+    jq = [[0.0] * 9 for _ in range(9)]
+    jv = [[0.0] * 9 for _ in range(9)]
+    jv[6][6] = windage_torque_derivative(v[6], x["race_windage_c1"], x["race_windage_c2"])
+    return jq, jv
+
+
+def _post_race_windage(ev: Evaluation, L) -> None:
+    w = ev.kin["wi"]
+    tw = np.array([windage_torque(wi, L.extra["race_windage_c1"], L.extra["race_windage_c2"]) for wi in w])
+    ev.out("race_windage_torque_nm", tw)
+    ev.dissipated("race_windage", -tw * np.asarray(w))
+
+
+REGISTRY += (
+    Mechanism("race_windage", "bearing", ("race_phi",), (windage_torque,), ("race_windage",), ("race_windage",),
+              outputs=(Output("race_windage_torque_nm", "N m", True, "air/grease drag torque on the inner race"),),
+              post=_post_race_windage,
+              active=lambda spec, L: L.extra["race_windage_c1"] > 0 or L.extra["race_windage_c2"] > 0,
+              doc="drag of the air and grease on the spinning inner race, eq 6's law on the race",
+              effect="race_windage", default_on=False,
+              params=(Param("race_windage_c1", "N m s", 0.0, "laminar drag coefficient of the inner race"),
+                      Param("race_windage_c2", "N m s^2", 0.0, "turbulent drag coefficient of the inner race")),
+              force=_race_windage_force, jacobian=_race_windage_jacobian),
+)
+
+#: series of the states themselves (not of a mechanism)
+STATE_OUTPUTS_BEARING = (
+    Output("y_m", "m", True, "journal centre, y"), Output("z_m", "m", True, "journal centre, z"),
+    Output("race_y_m", "m", True, "inner race centre, y"), Output("race_z_m", "m", True, "inner race centre, z"),
+    Output("race_speed_rpm", "rpm", True, "inner race speed"))
+STATE_OUTPUTS_ROTOR = (
+    Output("rotor_speed_rpm", "rpm", False, "rotor speed"),
+    Output("axial_position_m", "m", False, "rotor axial position"),
+    Output("kinetic_energy_j", "J", False, "kinetic energy"),
+    Output("potential_energy_j", "J", False, "elastic and gravitational potential energy"))
+
+
+def dissipation_entries() -> tuple[str, ...]:
+    return tuple(e for m in REGISTRY for e in m.dissipation)
+
+
+def input_entries() -> tuple[str, ...]:
+    return tuple(e for m in REGISTRY for e in m.inputs)
+
+
+def extra_effects() -> dict[str, bool]:
+    """The [effects] switches added by mechanisms outside the built-in list, with their defaults."""
+    return {m.effect: m.default_on for m in REGISTRY if m.effect}
+
+
+def extra_bearing_params() -> tuple[Param, ...]:
+    return tuple(p for m in REGISTRY for p in m.params)
+
+
+def _bearing_outputs() -> list[Output]:
+    seen, out = set(), []
+    for m in REGISTRY:
+        if m.scope == "bearing":
+            for o in m.outputs:
+                if o.name not in seen:  # a series several mechanisms add to (the drag torque)
+                    seen.add(o.name)
+                    out.append(o)
+    return out + list(STATE_OUTPUTS_BEARING)
+
+
+def series_units(bearing_names) -> dict[str, str]:
+    """Every series of a run, in output order, with its unit: the output schema."""
+    units = {o.name: o.unit for m in REGISTRY if m.scope == "rotor" for o in m.outputs}
+    for b in bearing_names:
+        units.update({b + "_" + o.name: o.unit for o in _bearing_outputs()})
+    units.update({o.name: o.unit for o in STATE_OUTPUTS_ROTOR})
+    for e in dissipation_entries():
+        units["power_" + e + "_w"] = "W"
+        units["dissipated_" + e + "_j"] = "J"
+    units.update({"input_" + e + "_j": "J" for e in input_entries()})
+    return units
+
+
+def rotor_force(series: dict, bearing: str) -> tuple:
+    """(Fy, Fz) on the rotor at a bearing: the sum of the outputs declared ``on_rotor``."""
+    parts = {"y": [], "z": []}
+    for o in _bearing_outputs():
+        if o.on_rotor:
+            parts[o.on_rotor].append(series[bearing + "_" + o.name])
+    fy, fz = parts["y"][0], parts["z"][0]
+    for extra in parts["y"][1:]:
+        fy = fy + extra
+    for extra in parts["z"][1:]:
+        fz = fz + extra
+    return fy, fz
+
+
+def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
+    """Every series of the schema on the stored states: each active mechanism's ``post`` hook, rotor
+    scope first, then per bearing in registry order; an inactive one leaves its zeros."""
+    nt = len(t)
+    names = list(series_units(spec.bearing_names))
+    ev = Evaluation(spec, t, q, v, series={k: np.zeros(nt) for k in names},
+                    power={e: np.zeros(nt) for e in dissipation_entries()},
+                    inputs={e: np.zeros(nt) for e in input_entries()}, ekin=np.zeros(nt), epot=np.zeros(nt))
+    for m in REGISTRY:
+        if m.scope == "rotor" and m.post is not None and m.active(spec, spec.rotor_laws):
+            m.post(ev, spec.rotor_laws)
+    for b in spec.bearings:
+        ev.bearing = b
+        ev.kin = _kinematics(ev, b)
+        for m in REGISTRY:
+            if m.scope == "bearing" and m.post is not None and m.active(spec, b.laws):
+                m.post(ev, b.laws)
+        pre = b.name + "_"
+        s, r = b.i_station, b.i_race
+        ev.series[pre + "y_m"], ev.series[pre + "z_m"] = q[:, s], q[:, s + 1]
+        # the inner race's centre: the journal's orbit relative to it is what the clearance bounds
+        ev.series[pre + "race_y_m"], ev.series[pre + "race_z_m"] = q[:, r], q[:, r + 1]
+        ev.series[pre + "race_speed_rpm"] = v[:, r + 2] * 30 / math.pi
+    ev.bearing, ev.kin = None, {}
+    out = ev.series
+    out["rotor_speed_rpm"] = v[:, spec.i_theta] * 30 / math.pi
+    out["axial_position_m"] = q[:, spec.i_axial]
+    out["kinetic_energy_j"] = ev.ekin
+    out["potential_energy_j"] = ev.epot
+    for e, p in ev.power.items():
+        out["power_" + e + "_w"] = p
+        out["dissipated_" + e + "_j"] = _trapz_cum(p, t)
+    for e, p in ev.inputs.items():
+        out["input_" + e + "_j"] = _trapz_cum(p, t)
+    return out
+
+
+def _trapz_cum(y: np.ndarray, t: np.ndarray) -> np.ndarray:
+    out = np.zeros_like(y)
+    out[1:] = np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(t))
+    return out
