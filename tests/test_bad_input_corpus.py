@@ -705,6 +705,10 @@ def test_every_shipped_input_still_loads():
         if "coastdown" in data:
             load_coastdown(f)
             kinds["coastdown"] += 1
+        elif "bearings" in data and "station" not in data["bearings"].get("DE", {}):
+            # a rig overlay (rotor + bearing values, `validate --rig`): loads merged over a paper scenario
+            load_scenario(ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml", overlays=[f])
+            kinds["rig overlay"] += 1
         elif "bearings" in data:
             load_scenario(f)
             kinds["scenario"] += 1
@@ -730,7 +734,7 @@ def test_every_shipped_input_still_loads():
         else:
             kinds["other"] += 1  # the measured feature table
     assert kinds == {"scenario": 7, "coastdown": 1, "rotor": 2, "fit-modes space": 4, "sweep": 1,
-                     "calibration space": 4, "paper numbers": 1, "other": 1}
+                     "calibration space": 4, "paper numbers": 1, "other": 1, "rig overlay": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():
             for p in effect.parameters:
