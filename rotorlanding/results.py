@@ -77,6 +77,7 @@ import datetime as _dt
 import hashlib
 import json
 import os
+from contextlib import contextmanager
 from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -219,15 +220,31 @@ def _append(ds, rows):
     ds[n:] = rows
 
 
+@contextmanager
+def _replaced_whole(path: Path, tag: str, point: str):
+    """Write a new version of ``path`` under a temporary name (yielded): once the block has closed
+    it, fault ``point``, fsync, rename over ``path``, fsync the folder. An OSError or WriteError
+    in the block or the rename removes the temporary file and propagates; ``path`` is untouched."""
+    tmp = tmp_name(path, tag)
+    try:
+        yield tmp
+        fault(point)
+        fsync_path(tmp)
+        os.replace(tmp, path)
+    except (OSError, WriteError):
+        unlink_quietly(tmp)
+        raise
+    fsync_dir(path.parent)
+
+
 def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_units_: dict, bearing_names):
     """A new coast-down results.h5 with empty resizable datasets (layout of rotorlanding.results
     plus /coastdown), written under a temporary name and renamed into place (commit 0)."""
     import exudyn
 
-    tmp = tmp_name(path, "part")
     # persistent free-space tracking: a partly filled compressed HDF5 chunk is rewritten at each
     # append, and without it the space it held is lost whenever the file is closed (file 2-4x larger)
-    try:
+    with _replaced_whole(path, "part", "create") as tmp:
         h5 = new_h5(tmp, CREATE_RESERVE, fs_strategy="fsm", fs_persist=True)
         with h5_guard(h5, tmp):
             h5.attrs["package"] = "rotorlanding"
@@ -271,13 +288,6 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_unit
             r["v"] = v0
             r.attrs.update(t_s=0.0, chunks=0, n_rows=0, wall_s=0.0, solver_wall_s=0.0, steps=0, newton_iterations=0,
                            jacobians=0, stop_reason="", rows_sha256="", state_sha256=_state_digest(q0, v0, 0.0, 0, 0))
-        fault("create")
-        fsync_path(tmp)
-        os.replace(tmp, path)
-    except (OSError, WriteError):
-        unlink_quietly(tmp)
-        raise
-    fsync_dir(path.parent)
 
 
 CREATE_RESERVE = 256 << 10  # bytes reserved for a new results.h5 (its empty layout is ~60 kB)
@@ -637,8 +647,7 @@ def repack(path: Path, attrs: dict | None = None, summary_json: str | None = Non
     renamed, so an interruption leaves the original."""
     import h5py
 
-    tmp = tmp_name(path, "repack")
-    try:
+    with _replaced_whole(path, "repack", "repacked") as tmp:
         dst = new_h5(tmp, path.stat().st_size + CREATE_RESERVE, fs_strategy="fsm", fs_persist=True)
         with h5_guard(dst, tmp), h5py.File(path, "r") as src:
             for key, val in src.attrs.items():
@@ -649,10 +658,3 @@ def repack(path: Path, attrs: dict | None = None, summary_json: str | None = Non
                     dst[key] = summary_json
                 else:
                     src.copy(src[key], dst, name=key)
-        fault("repacked")
-        fsync_path(tmp)
-        os.replace(tmp, path)
-    except (OSError, WriteError):
-        unlink_quietly(tmp)
-        raise
-    fsync_dir(path.parent)
