@@ -509,6 +509,35 @@ def rotor_load_parameters(spec: LandingSpec, include: bool) -> np.ndarray:
 
 
 @_njit
+def _rotor_loads(R, om, x, xd, thrust, amb_axial):
+    """Spin and axial rotor loads with their derivatives, one pass over the same branches:
+    (spin torque, d torque / d omega, axial force incl. ``thrust``, -d F_ax/dx, -d F_ax/dxd)."""
+    tq = 0.0
+    dt = 0.0
+    if R[R_WIND] != 0.0:
+        tq += _windage(om, R[R_CW1], R[R_CW2])
+        dt += _windage_d(om, R[R_CW1], R[R_CW2])
+    if R[R_DRIVE] != 0.0:
+        tq += _drive(om, R[R_GAIN], R[R_OMEGA0])
+        dt -= R[R_GAIN]
+    f = _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
+    fa = thrust + f
+    kx = 0.0
+    cx = 0.0
+    if f != 0.0:
+        if abs(x) - R[R_CLAX] <= R[R_DM]:
+            kx = 1.0 / (1.0 / R[R_KCB] + 1.0 / R[R_KWS])
+        else:
+            kx = 1.0 / (1.0 / R[R_KCB] + 1.0 / R[R_KHS])
+        cx = R[R_CAX]
+    if amb_axial:
+        fa += _amb(x, xd, -thrust, R[R_KAXAMB], R[R_CAXAMB])
+        kx += R[R_KAXAMB]
+        cx += R[R_CAXAMB]
+    return tq, dt, fa, kx, cx
+
+
+@_njit
 def landing_rhs(PB, IDX, R, q, v, tilts, thrust, amb_axial, out):
     """Generalized forces of all bearings (+ spin/axial rotor loads when R[R_ON]) on the merged
     connector's local coordinates. IDX[b] = local indices of BEARING_LOCAL of bearing b."""
@@ -524,18 +553,8 @@ def landing_rhs(PB, IDX, R, q, v, tilts, thrust, amb_axial, out):
     if R[R_ON] != 0.0:
         i_th = IDX[0, 2]
         i_ax = IDX[0, 3]
-        om = v[i_th]
-        tq = 0.0
-        if R[R_WIND] != 0.0:
-            tq += _windage(om, R[R_CW1], R[R_CW2])
-        if R[R_DRIVE] != 0.0:
-            tq += _drive(om, R[R_GAIN], R[R_OMEGA0])
+        tq, _, fa, _, _ = _rotor_loads(R, v[i_th], q[i_ax], v[i_ax], thrust, amb_axial)
         out[i_th] += tq
-        x = q[i_ax]
-        xd = v[i_ax]
-        fa = thrust + _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
-        if amb_axial:
-            fa += _amb(x, xd, -thrust, R[R_KAXAMB], R[R_CAXAMB])
         out[i_ax] += fa
     return out
 
@@ -559,27 +578,8 @@ def landing_jacobian(PB, IDX, R, q, v, tilts, amb_axial, fq, fv, out):
     if R[R_ON] != 0.0:
         i_th = IDX[0, 2]
         i_ax = IDX[0, 3]
-        om = v[i_th]
-        dt = 0.0
-        if R[R_WIND] != 0.0:
-            dt += _windage_d(om, R[R_CW1], R[R_CW2])
-        if R[R_DRIVE] != 0.0:
-            dt -= R[R_GAIN]
+        _, dt, _, kx, cx = _rotor_loads(R, v[i_th], q[i_ax], v[i_ax], 0.0, amb_axial)
         out[i_th, i_th] -= fv * dt
-        x = q[i_ax]
-        xd = v[i_ax]
-        f = _axial_force(x, xd, R[R_CLAX], R[R_DM], R[R_KCB], R[R_KWS], R[R_KHS], R[R_CAX])
-        kx = 0.0
-        cx = 0.0
-        if f != 0.0:
-            if abs(x) - R[R_CLAX] <= R[R_DM]:
-                kx = 1.0 / (1.0 / R[R_KCB] + 1.0 / R[R_KWS])
-            else:
-                kx = 1.0 / (1.0 / R[R_KCB] + 1.0 / R[R_KHS])
-            cx = R[R_CAX]
-        if amb_axial:
-            kx += R[R_KAXAMB]
-            cx += R[R_CAXAMB]
         out[i_ax, i_ax] += fq * kx + fv * cx
     return out
 

@@ -303,6 +303,14 @@ def cmd_fit_modes(args) -> int:
     return 0
 
 
+def _run_options(p, t_end_help: str, set_help: str, plots_help: str, quiet_help: str) -> None:
+    """The options `run` and `coastdown` share: --t-end, --set, --no-plots, --quiet."""
+    p.add_argument("--t-end", type=float, default=None, help=t_end_help)
+    p.add_argument("--set", action="append", metavar="KEY=VALUE", help=set_help + " (repeatable)")
+    p.add_argument("--no-plots", action="store_true", help=plots_help)
+    p.add_argument("--quiet", action="store_true", help=quiet_help)
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="rotorlanding", description=__doc__.splitlines()[0])
     p.add_argument("--version", action="version", version=f"rotorlanding {__version__}")
@@ -322,11 +330,8 @@ def build_parser() -> argparse.ArgumentParser:
     u = sub.add_parser("run", help="simulate a landing scenario: results.h5, summary.json, figures")
     u.add_argument("scenario", help="scenario TOML file (or a results.h5 to re-run its stored scenario)")
     u.add_argument("--out", default="out", help="output folder (default ./out)")
-    u.add_argument("--t-end", type=float, default=None, help="override operating.t_end [s]")
-    u.add_argument("--set", action="append", metavar="KEY=VALUE",
-                   help="override a scenario value, e.g. --set contact.mu_rad=0.3 (repeatable)")
-    u.add_argument("--no-plots", action="store_true", help="skip the figures")
-    u.add_argument("--quiet", action="store_true", help="no progress bar")
+    _run_options(u, "override operating.t_end [s]", "override a scenario value, e.g. --set contact.mu_rad=0.3",
+                 "skip the figures", "no progress bar")
     u.set_defaults(func=cmd_run)
 
     cd = sub.add_parser("coastdown", help="coast-down to rest: chunked, streamed to results.h5, resumable")
@@ -334,11 +339,8 @@ def build_parser() -> argparse.ArgumentParser:
     cd.add_argument("--out", default="coastdown", help="output folder (default ./coastdown)")
     cd.add_argument("--resume", action="store_true", help="continue the run in --out from its last written chunk")
     cd.add_argument("--overwrite", action="store_true", help="start over even if --out holds an unfinished run")
-    cd.add_argument("--t-end", type=float, default=None, help="override operating.t_end (cap on simulated time) [s]")
-    cd.add_argument("--set", action="append", metavar="KEY=VALUE",
-                    help="override a value, e.g. --set coastdown.stop_speed_rpm=500 (repeatable)")
-    cd.add_argument("--no-plots", action="store_true", help="skip coastdown.png")
-    cd.add_argument("--quiet", action="store_true", help="no progress lines")
+    _run_options(cd, "override operating.t_end (cap on simulated time) [s]",
+                 "override a value, e.g. --set coastdown.stop_speed_rpm=500", "skip coastdown.png", "no progress lines")
     cd.set_defaults(func=cmd_coastdown)
 
     va = sub.add_parser("validate", help="run the paper's landings and write the validation report")

@@ -29,6 +29,12 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     names = list(bearings)
     title = summary.get("scenario", "")
 
+    def save(fig, fname):
+        fig.tight_layout()
+        files.append(out / fname)
+        fig.savefig(files[-1], dpi=110)
+        plt.close(fig)
+
     def time_histories(curves, ylabel, suptitle, fname, band=None):
         """One panel per bearing: curves(b) -> [(values, label)], optional +/- band (dotted)."""
         fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), sharex=True, squeeze=False)
@@ -43,10 +49,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
             ax.grid(alpha=0.3)
         axes[-1, 0].set_xlabel("time [s]")
         fig.suptitle(f"{title}: {suptitle}")
-        fig.tight_layout()
-        files.append(out / fname)
-        fig.savefig(files[-1], dpi=110)
-        plt.close(fig)
+        save(fig, fname)
 
     time_histories(lambda b: [(series[f"{b}_z_m"] * 1e3, "vertical z"), (series[f"{b}_y_m"] * 1e3, "horizontal y")],
                    "{b} journal [mm]", "journal displacement (dotted: +/- radial clearance)", "displacements.png",
@@ -86,10 +89,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
             ax.set_title(f"{b} journal {label}:\n{txt}", fontsize=9)
             ax.grid(alpha=0.3)
             ax.legend(loc="upper right", fontsize=8)
-    fig.tight_layout()
-    files.append(out / "orbits.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    save(fig, "orbits.png")
 
     fig, ax = plt.subplots(figsize=(9, 4))
     ax.plot(t, series["rotor_speed_rpm"], "k", label="rotor")
@@ -100,10 +100,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     ax.set_title(f"{title}: rotor and inner-race speeds")
-    fig.tight_layout()
-    files.append(out / "speeds.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    save(fig, "speeds.png")
 
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 3.2 * len(names)), squeeze=False)
     sel = t >= t_drop
@@ -120,10 +117,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
         ax.legend(fontsize=8)
     axes[-1, 0].set_xlabel("full-spectrum frequency [Hz] (negative = backward whirl)")
     fig.suptitle(f"{title}: full spectrum of y + i z after the drop")
-    fig.tight_layout()
-    files.append(out / "spectrum.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    save(fig, "spectrum.png")
 
     fig, ax = plt.subplots(figsize=(9, 4))
     for k, v in series.items():
@@ -135,8 +129,5 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     ax.set_title(f"{title}: energy lost per mechanism")
-    fig.tight_layout()
-    files.append(out / "energy.png")
-    fig.savefig(files[-1], dpi=110)
-    plt.close(fig)
+    save(fig, "energy.png")
     return files

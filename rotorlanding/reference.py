@@ -16,12 +16,13 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from user_forces.amb import amb_force
 from user_forces.axial import axial_force
 from user_forces.axial_rub import axial_rub
 from user_forces.ball_bearing import ball_force, harris_palmgren_torque, worn_drag_torque, worn_friction_torque
 from user_forces.radial_contact import radial_contact
 from user_forces.ribbon import outer_race_friction, ribbon_force
-from user_forces.spin import windage_torque
+from user_forces.spin import drive_torque, windage_torque
 
 from .landing import LandingSpec
 from .params import OMEGA_REG_HP
@@ -56,7 +57,7 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
     if t < sc.amb.t_drop or not sc.amb.drop_radial:
         for iy, iz in spec.amb_rows:
             for i in (iy, iz):
-                f[i] += -spec.f_gravity[i] - sc.amb.stiffness * q[i] - sc.amb.damping * v[i]
+                f[i] += amb_force(q[i], v[i], -spec.f_gravity[i], sc.amb.stiffness, sc.amb.damping)
     if spec.unbalance_rows is not None:
         ang = q[spec.i_theta] + math.radians(sc.unbalance.phase_deg)
         fu = sc.unbalance.magnitude * omega**2
@@ -64,12 +65,12 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
     if rl.windage:
         f[spec.i_theta] += windage_torque(omega, rl.c_w1, rl.c_w2)
     if rl.constant_drive:
-        f[spec.i_theta] += rl.drive_gain * (rl.omega0 - omega)
+        f[spec.i_theta] += drive_torque(omega, rl.drive_gain, rl.omega0)
     x, xd = q[spec.i_axial], v[spec.i_axial]
     f_ax = axial_force(x, xd, a.cl_ax, a.delta_m, a.k_cb, a.k_ws, a.k_h, a.c_ax)
     f[spec.i_axial] += spec.thrust(t) + f_ax
     if t < sc.amb.t_drop or not sc.amb.drop_axial:
-        f[spec.i_axial] += -spec.thrust(t) - sc.amb.axial_stiffness * x - sc.amb.axial_damping * xd
+        f[spec.i_axial] += amb_force(x, xd, -spec.thrust(t), sc.amb.axial_stiffness, sc.amb.axial_damping)
     for b in spec.bearings:
         L = b.laws
         s, r, o = b.i_station, b.i_race, b.i_race + 3

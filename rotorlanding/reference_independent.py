@@ -44,6 +44,17 @@ from user_forces.spin import windage_torque
 from .timoshenko import GRAVITY
 
 
+def _journal_pair(f, s, r, it, res):
+    """Add a journal-race law's (F_y, F_z, T_rotor, T_race) on the rotor at station s (spin row it)
+    and, reacted, on the inner race r (F_y, F_z on race_y, race_z; T_race on race_phi)."""
+    f[s] += res[0]
+    f[s + 1] += res[1]
+    f[r] -= res[0]
+    f[r + 1] -= res[1]
+    f[it] += res[2]
+    f[r + 2] += res[3]
+
+
 def reference_forces(spec, *, rub_v_reg: str = "v_reg_axial"):
     """Return ``forces(t, q, v) -> (f, parts)``: the generalized force vector of ``M q'' = f`` in
     spec order and a dict of the individual law outputs (for term-by-term comparisons)."""
@@ -107,12 +118,7 @@ def reference_forces(spec, *, rub_v_reg: str = "v_reg_axial"):
             rc = radial_contact(dy, dz, dvy, dvz, om, om_i, p.clearance, c.k_hertz, c.exponent,
                                 k_visc, mu_rad, c.v_reg, p.sleeve_radius, p.race_radius)
             parts[b.name + ".radial"] = rc
-            f[s] += rc[0]
-            f[s + 1] += rc[1]
-            f[r] -= rc[0]
-            f[r + 1] -= rc[1]
-            f[it] += rc[2]
-            f[r + 2] += rc[3]
+            _journal_pair(f, s, r, it, rc)
             # axial face
             N = abs(f_ax) if p.axial_face else 0.0
             if p.axial_face and eff["axial_rub"] and N > 0.0:
@@ -122,12 +128,7 @@ def reference_forces(spec, *, rub_v_reg: str = "v_reg_axial"):
                                1.0 if x >= 0.0 else -1.0, c.mu_ax, v_rub,
                                p.face_inner_radius, p.face_outer_radius)
                 parts[b.name + ".rub"] = ar
-                f[s] += ar[0]
-                f[s + 1] += ar[1]
-                f[r] -= ar[0]
-                f[r + 1] -= ar[1]
-                f[it] += ar[2]
-                f[r + 2] += ar[3]
+                _journal_pair(f, s, r, it, ar)
             # balls (force on the inner race; outer gets minus)
             fb = ball_force(q[r] - q[o], q[r + 1] - q[o + 1], p.k_b1, p.k_b2,
                             v[r] - v[o], v[r + 1] - v[o + 1], p.c_b)

@@ -72,7 +72,7 @@ from math import expm1, log, pi, sqrt
 
 import numpy as np
 
-from user_forces.contact_stress import elliptic_ke
+from user_forces.contact_stress import _nonnegative, _positive, elliptic_ke  # the same argument checks
 
 SLEEVE, INNER, BALLS, OUTER, HOUSING = 0, 1, 2, 3, 4
 NODE_NAMES = ("sleeve", "inner_ring", "ball_set", "outer_ring", "housing")
@@ -106,16 +106,6 @@ class Material:
 # 475 J/kgK quoted from MatWeb, not verified here.
 STEEL_52100 = Material(density=7810.0, specific_heat=475.0, conductivity=46.6, expansion=11.9e-6)
 AIR_CONDUCTIVITY = 0.026          # W/(m K) at ~300 K (textbook value, quoted)
-
-
-def _positive(name, value):
-    if not value > 0.0:
-        raise ValueError(f"{name} = {value!r}: must be > 0")
-
-
-def _nonnegative(name, value):
-    if not value >= 0.0:
-        raise ValueError(f"{name} = {value!r}: must be >= 0")
 
 
 # --- capacities -----------------------------------------------------------------------------
