@@ -197,6 +197,10 @@ class Rotor:
         for s in speeds:
             if not math.isfinite(s) or s < 0:
                 raise InputError("speeds_rpm", s, "must be finite and >= 0 rpm")
+        burst, part = self.model.burst_speed_rpm()
+        if speeds and max(speeds) > burst:
+            raise InputError("speeds_rpm", max(speeds), f"must be <= {burst:.4g} rpm: above it {part} bursts even if "
+                             "made of the strongest steel")
         if model not in ("full", "reduced"):
             raise InputError("model", model, "must be 'full' or 'reduced'")
         if n_modes is not None and (isinstance(n_modes, bool) or not isinstance(n_modes, int) or n_modes < 1):
@@ -441,8 +445,12 @@ class Landing:
             raise InputError("results file", str(path), f"not a rotorlanding results.h5 ({exc})") from None
         if res["attrs"].get("kind") == "coastdown":
             raise InputError("results file", str(path), "is a coast-down result; Landing.load reads landings")
-        order = list(res["series"])
         scenario = Scenario(scenario_from_dict(res["scenario"], name=res["attrs"].get("scenario_name")))
+        from .mechanisms import series_units
+
+        # the registry's output order (the file stores series alphabetically)
+        schema = list(series_units(scenario.bearings))
+        order = [k for k in schema if k in res["series"]] + sorted(set(res["series"]) - set(schema))
         return cls(scenario, res["time_s"], res["q"], res["v"], res["names"], {k: res["series"][k] for k in order},
                    {k: str(units[k]) for k in order}, res["summary"])
 
