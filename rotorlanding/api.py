@@ -300,6 +300,16 @@ class Scenario:
         apply_overrides(data, _override_items(overrides))
         return Scenario(scenario_from_dict(data, source=self.model.source, name=self.model.name))
 
+    def with_rotor(self, rotor: Rotor) -> "Scenario":
+        """A new scenario landing ``rotor`` (a :class:`Rotor`) on this scenario's catcher
+        bearings: its stations must include the bearings' stations and it needs a
+        ``reduction`` (the Craig-Bampton boundary at the sleeves)."""
+        if not isinstance(rotor, Rotor):
+            raise InputError("rotor", type(rotor).__name__, "must be a rotorlanding.Rotor")
+        data = copy.deepcopy(self.model.raw)
+        data["rotor"] = copy.deepcopy(rotor.table)
+        return Scenario(scenario_from_dict(data, name=self.model.name))
+
     def replace(self, **dotted) -> "Scenario":
         """Keyword form of :meth:`with_overrides`: a double underscore stands for the dot
         (``sc.replace(contact__mu_rad=0.2, operating__t_end=0.05)``)."""
