@@ -38,6 +38,10 @@ __all__ = ["Rotor", "Modes", "Scenario", "Landing", "Series", "simulate", "Input
 # lists of scalars). Floats are written with repr(), so a value reads back bit for bit.
 
 def _toml_value(v) -> str:
+    if isinstance(v, np.generic):  # numpy scalars: their repr is not TOML (np.float64(0.1))
+        v = v.item()
+    if isinstance(v, np.ndarray):
+        v = v.tolist()
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, int):
@@ -79,6 +83,31 @@ def _toml_dump(data: dict, prefix: str = "") -> str:
     return out
 
 
+def _plain(v):
+    """numpy scalars and arrays as the Python numbers and lists a TOML file gives."""
+    if isinstance(v, dict):
+        return {k: _plain(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, np.ndarray):
+        return _plain(v.tolist())
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
+
+
+def _table(v, field: str) -> dict:
+    if not isinstance(v, dict):
+        raise InputError(field, v, "must be a table (a dict)")
+    return copy.deepcopy(v)
+
+
+def _tables(v, field: str) -> list:
+    if isinstance(v, (str, bytes, dict)) or not hasattr(v, "__iter__"):
+        raise InputError(field, v, "must be a list of tables (dicts)")
+    return [_table(x, f"{field}[{i}]") for i, x in enumerate(v)]
+
+
 # ---------------------------------------------------------------------------------------------
 # Rotor
 
@@ -112,19 +141,19 @@ class Rotor:
     def __init__(self, name: str = "rotor", *, materials: dict, sections: list, disks=(), stations=None,
                  supports=(), reduction: dict | None = None, damping: dict | None = None,
                  max_speed_rpm: float = 10000.0, _source: str | None = None):
-        table = {"name": name, "max_speed_rpm": max_speed_rpm, "materials": copy.deepcopy(dict(materials)),
-                 "sections": [dict(s) for s in sections]}
+        table = {"name": name, "max_speed_rpm": max_speed_rpm, "materials": _table(materials, "rotor.materials"),
+                 "sections": _tables(sections, "rotor.sections")}
         if stations:
-            table["stations"] = dict(stations)
+            table["stations"] = _table(stations, "rotor.stations")
         if disks:
-            table["disks"] = [dict(d) for d in disks]
+            table["disks"] = _tables(disks, "rotor.disks")
         if supports:
-            table["supports"] = [dict(s) for s in supports]
+            table["supports"] = _tables(supports, "rotor.supports")
         if reduction is not None:
-            table["reduction"] = dict(reduction)
+            table["reduction"] = _table(reduction, "rotor.reduction")
         if damping is not None:
-            table["damping"] = dict(damping)
-        self._init(table, _source)
+            table["damping"] = _table(damping, "rotor.damping")
+        self._init(_plain(table), _source)
 
     def _init(self, table: dict, source: str | None) -> None:
         self.table = copy.deepcopy(table)

@@ -50,6 +50,17 @@ def test_rotor_toml_round_trip_gives_identical_fe_matrices(tmp_path, source):
     assert rotor.mass > 1.0
 
 
+def test_numpy_values_round_trip(tmp_path):
+    """A rotor built from numpy numbers (a script's usual values) writes plain TOML and reads back."""
+    lengths = np.linspace(0.2, 0.4, 3)
+    rotor = python_rotor(sections=[{"length": L, "outer_diameter": np.float64(0.05), "material": "steel",
+                                    "elements": np.int64(3)} for L in lengths],
+                         stations={"NDE": np.float64(0.05), "DE": 0.75})
+    back = rl.Rotor.from_toml(rotor.to_toml(tmp_path / "r.toml"))
+    assert "np." not in (tmp_path / "r.toml").read_text()
+    assert np.array_equal(back.fe().K, rotor.fe().K) and back.model == rotor.model
+
+
 def test_rotor_modes_match_the_cli_on_the_written_file(tmp_path, capsys):
     rotor = python_rotor()
     path = rotor.to_toml(tmp_path / "rotor.toml")
@@ -156,6 +167,9 @@ def test_scenario_to_toml_round_trip(tmp_path):
     (lambda: rl.Scenario.load(SCEN, set={"contact.mu_radial": 0.2}), "contact.mu_radial"),
     (lambda: rl.Scenario.load(SCEN).replace(operating__t_end=-1.0), "operating.t_end"),
     (lambda: python_rotor().modes([-5.0]), "speeds_rpm"),
+    (lambda: python_rotor().modes([1e6]), "speeds_rpm"),  # above the burst speed
+    (lambda: python_rotor(sections=[0.1, 0.05]), "rotor.sections[0]"),
+    (lambda: python_rotor(materials=["steel"]), "rotor.materials"),
 ])
 def test_bad_input_is_one_line_input_error(build, field):
     with pytest.raises(rl.InputError) as exc:
