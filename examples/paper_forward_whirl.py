@@ -28,16 +28,19 @@ print(f"whirl at the {w['bearing']} bearing: {w['direction']}, {w.get('frequency
 # one figure a colleague reads: DE orbit in the clearance, vertical displacement and force in time
 t = landing.t
 clear_mm = landing.summary["bearings"]["DE"]["clearance_m"] * 1e3
-y, z = landing["DE_y_m"].values * 1e3, landing["DE_z_m"].values * 1e3
+y, z = landing["DE_y_m"].values * 1e3, landing["DE_z_m"].values * 1e3  # absolute (housing frame)
+# the journal relative to the inner race: the clearance bounds it (up to the Hertz penetration)
+ry = y - landing["DE_race_y_m"].values * 1e3
+rz = z - landing["DE_race_z_m"].values * 1e3
 fig = plt.figure(figsize=(12, 5.2))
 ax = fig.add_subplot(1, 2, 1)
 th = np.linspace(0, 2 * np.pi, 300)
 ax.plot(clear_mm * np.cos(th), clear_mm * np.sin(th), "b-", lw=1.2, label=f"radial clearance {clear_mm:.2f} mm")
-sc = ax.scatter(y, z, c=t, s=1.5, cmap="viridis")
+sc = ax.scatter(ry, rz, c=t, s=1.5, cmap="viridis")
 fig.colorbar(sc, ax=ax, label="time [s]")
 ax.set_aspect("equal")
-ax.set_xlabel("DE journal y (horizontal, housing frame: includes the race on its ribbon) [mm]", fontsize=8)
-ax.set_ylabel("DE journal z (vertical) [mm]")
+ax.set_xlabel("DE journal y relative to the inner race (horizontal) [mm]")
+ax.set_ylabel("DE journal z relative to the inner race (vertical) [mm]")
 ax.set_title(f"DE journal orbit: {w['direction']} whirl {w.get('frequency_hz') or 0:.1f} Hz "
              f"(paper {PAPER_WHIRL_HZ:.0f} Hz)", fontsize=10)
 ax.legend(loc="upper right", fontsize=8)
@@ -45,7 +48,7 @@ ax.grid(alpha=0.3)
 ax1 = fig.add_subplot(2, 2, 2)
 ax1.plot(t, z, "k-", lw=0.6, label="vertical z")
 ax1.plot(t, y, "tab:orange", lw=0.6, label="horizontal y")
-ax1.set_ylabel(f"DE journal [{'mm'}]")
+ax1.set_ylabel("DE journal (housing frame) [mm]")
 ax1.legend(fontsize=8, loc="upper right")
 ax1.grid(alpha=0.3)
 ax2 = fig.add_subplot(2, 2, 4, sharex=ax1)
