@@ -44,7 +44,7 @@ rotor.to_toml(args.out / "rotor.toml")  # `rotorlanding modes` reads it too
 modes = rotor.modes([0.0, 7000.0], n_modes=4)
 for speed, f, w in zip(modes.speeds_rpm, modes.frequencies_hz, modes.whirl):
     print(f"{speed:6.0f} rpm: " + ", ".join(f"{x:.1f} Hz {s}" for x, s in zip(f, w)))
-modes.campbell(args.out / "campbell.png", points=11 if args.short else 41)
+modes.campbell(args.out / "campbell.png", points=5 if args.short else 41)
 
 # land it on the rig's catcher bearings (scenarios/landing_7000rpm.toml): 7000 rpm radial drop
 scenario = rl.Scenario.load(SCENARIOS / "landing_7000rpm.toml").with_rotor(rotor)
