@@ -110,6 +110,25 @@ def _write(scenario, out, spec, t, q, v, stats, plots) -> dict:
                    "performance": {k: stats[k] for k in ("simulated_s", "wall_s", "steps")}}
         atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
         return summary
+    series, summary = build_summary(scenario, spec, t, q, v, stats)
+    write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
+                  t=t, q=q, v=v, series=series, units=series_units(spec.bearing_names), summary=summary,
+                  complete=stats["complete"],
+                  t_reached=float(t[-1]), message=summary.get("message", ""))
+    # the summary is final only once results.h5 is: a kill in between leaves `running`
+    atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
+    if plots:
+        plot_files = __import__("rotorlanding.plots", fromlist=["plot_all"]).plot_all(
+            out, t, series, summary, {b.name: b.params.clearance for b in spec.bearings}, scenario.amb.t_drop)
+        summary["figures"] = [p.name for p in plot_files]
+        atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
+    return summary
+
+
+def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
+    """(series, summary) of a solved run (at least two samples): the derived time series (SI,
+    units in ``mechanisms.series_units``) and the summary.json content. The CLI and the Python
+    API (:func:`rotorlanding.simulate`) both build their summary here."""
     series = evaluate(spec, t, q, v)
     summary = summarize(spec, t, series)
     summary["complete"] = stats["complete"]
@@ -127,18 +146,7 @@ def _write(scenario, out, spec, t, q, v, stats, plots) -> dict:
         warnings.append(f"energy balance error {100 * err:.1f} % > {100 * ENERGY_WARN:.0f} %: the time step "
                         f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
     summary["warnings"] = warnings
-    write_results(out / "results.h5", scenario_raw=scenario.raw, scenario_name=scenario.name, names=spec.names,
-                  t=t, q=q, v=v, series=series, units=series_units(spec.bearing_names), summary=summary,
-                  complete=stats["complete"],
-                  t_reached=float(t[-1]), message=summary.get("message", ""))
-    # the summary is final only once results.h5 is: a kill in between leaves `running`
-    atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
-    if plots:
-        plot_files = __import__("rotorlanding.plots", fromlist=["plot_all"]).plot_all(
-            out, t, series, summary, {b.name: b.params.clearance for b in spec.bearings}, scenario.amb.t_drop)
-        summary["figures"] = [p.name for p in plot_files]
-        atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
-    return summary
+    return series, summary
 
 
 def stop_report(spec, series: dict, stats: dict, window: int = 20) -> str:

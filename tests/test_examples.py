@@ -1,0 +1,51 @@
+"""Every script in examples/ runs (its --short version in the default selection, the full one
+marked slow) and writes its figures."""
+
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+CASES = {
+    "build_rotor_and_land.py": ["campbell.png", "orbits.png", "displacements.png", "results.h5", "rotor.toml"],
+    "paper_forward_whirl.py": ["forward_whirl.png", "spectrum.png", "results.h5"],
+    "whirl_map.py": ["whirl_map.png"],
+}
+
+
+def _run(script: str, out: Path, *extra) -> str:
+    def cpu():
+        r = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return r.ru_utime + r.ru_stime
+
+    t0, c0 = time.perf_counter(), cpu()
+    proc = subprocess.run([sys.executable, str(EXAMPLES / script), "--out", str(out), *extra], cwd=EXAMPLES,
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    for name in CASES[script]:
+        assert (out / name).stat().st_size > 1000, name
+    return proc.stdout, time.perf_counter() - t0, cpu() - c0
+
+
+def test_every_example_is_tested():
+    assert sorted(p.name for p in EXAMPLES.glob("*.py") if not p.name.startswith("_")) == sorted(CASES)
+
+
+@pytest.mark.parametrize("script", sorted(CASES))
+def test_example_short(script, tmp_path):
+    stdout, wall, cpu = _run(script, tmp_path, "--short")
+    # CPU seconds of the script, not wall: on a shared machine the wall time measures the neighbours
+    assert cpu < 30.0, f"{script} --short took {cpu:.1f} s CPU ({wall:.1f} s wall)"
+    if script == "paper_forward_whirl.py":
+        assert "whirl at the DE bearing: forward" in stdout  # the paper's result, from the API
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("script", sorted(CASES))
+def test_example_full(script, tmp_path):
+    _run(script, tmp_path)
