@@ -63,15 +63,16 @@ def test_calibration_search_ranges_lie_inside_the_physical_bounds():
 def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
     import rotorlanding.validate as v
 
-    rng = {"min": 0.2, "max": 3.2}
+    # a search range around the calibrated value, whatever the calibration made of it
+    value = load_scenario(PAPER / "backward_whirl_landing.toml").bearings["DE"].worn_drag_torque
+    rng = {"min": 0.2, "max": 1.5 * value}
     monkeypatch.setattr(v, "calibrated_keys", lambda: {"bearings.DE.worn_drag_torque": ("space.toml", rng)})
     ok, _ = v.rig_checks()
     assert ok["pass"] and ok["source"].startswith("min: healthy")
-    value = load_scenario(PAPER / "backward_whirl_landing.toml").bearings["DE"].worn_drag_torque
     rng["max"] = value * 1.001  # the calibrated value now presses on the search range's end
     on, _ = v.rig_checks()
     assert not on["pass"] and on["margin"] < 0
-    rng.update(min=0.01, max=3.2)  # the search range reaches outside the physical bound
+    rng.update(min=0.01, max=1.5 * value)  # the search range reaches outside the physical bound
     out, _ = v.rig_checks()
     assert not out["pass"] and "outside the bound" in out["ours"]
 
