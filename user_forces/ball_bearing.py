@@ -35,10 +35,6 @@ T ~ 0.05 N m) keeps the race spin equation only mildly stiff (time constant ~1e-
 
 from math import cos, exp, sin, sqrt, radians
 
-# register_jitable: a plain Python function that numba can also compile where a compiled law calls it,
-# so Harris's load measure below is written once for both drag laws (the kernel compiles the laws)
-from numba.extending import register_jitable
-
 OMEGA_REG_DEFAULT = 0.1
 
 
@@ -92,17 +88,6 @@ def worn_drag_torque(omega_race_rel, torque, omega_reg=OMEGA_REG_DEFAULT, angle=
     return -torque * g * omega_race_rel / sqrt(omega_race_rel * omega_race_rel + omega_reg * omega_reg)
 
 
-@register_jitable
-def harris_load(f_radial, f_axial, c4cot, c5):
-    """Harris's friction load F_beta = max(c4 F_a cot(a) + c5 F_r, F_r) (eq 27 as corrected, #16) of
-    the absolute loads [N], and its derivatives (dF_beta/dF_r, dF_beta/dF_a): the floor's on the
-    branch F_beta = F_r. ``c4cot`` = c4 cot(a)."""
-    f_beta = c4cot * f_axial + c5 * f_radial
-    if f_beta < f_radial:
-        return f_radial, 1.0, 0.0
-    return f_beta, c5, c4cot
-
-
 def worn_friction_constants(friction, contact_angle_deg, d_m, growth_angle=0.0, omega_reg=OMEGA_REG_DEFAULT,
                             c4=0.9, c5=-0.1):
     """Load-independent constants of :func:`worn_friction_with_derivatives`, once per bearing:
@@ -135,7 +120,12 @@ def worn_friction_with_derivatives(omega_race_rel, f_radial, f_axial, angle, k):
     against T) no longer hangs on the load of the moment: radial friction decides it.
     """
     half_mu_dm, c4cot, c5, wreg2, growth = k
-    f_beta, dbr, dba = harris_load(abs(f_radial), abs(f_axial), c4cot, c5)
+    fr = abs(f_radial)
+    fa = abs(f_axial)
+    f_beta = c4cot * fa + c5 * fr
+    dbr, dba = c5, c4cot
+    if f_beta < fr:
+        f_beta, dbr, dba = fr, 1.0, 0.0
     if growth > 0.0:
         e = exp(-abs(angle) / growth)
         g = 1.0 - e
@@ -216,7 +206,10 @@ def harris_palmgren_with_derivatives(omega_race_rel, f_radial, f_axial, k):
         f_s, dsr, dsa = fr, 1.0, 0.0
     if f_s <= 0.0:
         return 0.0, 0.0, 0.0, 0.0
-    f_beta, dbr, dba = harris_load(fr, fa, c4cot, c5)
+    f_beta = c4cot * fa + c5 * fr
+    dbr, dba = c5, c4cot
+    if f_beta < fr:
+        f_beta, dbr, dba = fr, 1.0, 0.0
     m2 = omega_race_rel * omega_race_rel + wreg2
     m = sqrt(m2)
     g = omega_race_rel / m

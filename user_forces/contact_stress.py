@@ -68,9 +68,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from math import acos, cos, pi, radians, sin, sqrt
 
-# register_jitable: plain Python that numba also compiles where a compiled law calls it (one AGM)
-from numba.extending import register_jitable
-
 ISO76_BALL_PA = 4200.0e6            # Pa, ISO 76 basis, ball bearings other than self-aligning
 ISO76_SELF_ALIGNING_BALL_PA = 4600.0e6
 ISO76_ROLLER_PA = 4000.0e6
@@ -104,15 +101,8 @@ def elliptic_ke(m):
     (Abramowitz & Stegun 17.6.1-17.6.4). Converges quadratically (< 10 iterations to 1e-16)."""
     if not 0.0 <= m < 1.0:
         raise ValueError(f"m = {m!r}: elliptic parameter must be in [0, 1)")
-    return _agm_ke(sqrt(1.0 - m), m)
-
-
-@register_jitable
-def _agm_ke(b0, m):
-    """(K(m), E(m)) by the AGM from b0 = sqrt(1 - m) (a caller that has b0 exactly, as the ellipse's
-    axis ratio kappa, passes it: sqrt(1 - (1 - kappa^2)) would round)."""
     a = 1.0
-    b = b0
+    b = sqrt(1.0 - m)
     s = 0.5 * m                      # 2^(-1) c0^2
     w = 0.5
     for _ in range(40):
@@ -143,10 +133,10 @@ def hertz_point_contact(force, r_x, r_y, e_star):
 
 
 def hertz_point_fast(force, r_x, r_y, e_star):
-    """:func:`hertz_point_contact` without checks (numba-compilable, per step).
+    """:func:`hertz_point_contact` without checks and without calls (a numba leaf, per step).
 
     Solves B/A(e) = R_big/R_small by bisection on kappa = b/a (B/A increases as kappa falls),
-    with K(m), E(m) by the AGM of :func:`elliptic_ke` started from kappa itself."""
+    with K(m), E(m) by the AGM inline (as :func:`elliptic_ke`)."""
     if force <= 0.0:
         return 0.0, 0.0, 0.0, 0.0
     r_big = r_x if r_x >= r_y else r_y
@@ -162,7 +152,16 @@ def hertz_point_fast(force, r_x, r_y, e_star):
     for _ in range(200):
         kap = 0.5 * (lo + hi)
         m = 1.0 - kap * kap
-        kk, ee = _agm_ke(kap, m)
+        ag, bg, sg, wg = 1.0, kap, 0.5 * m, 0.5
+        for _ in range(40):
+            c = 0.5 * (ag - bg)
+            ag, bg = 0.5 * (ag + bg), sqrt(ag * bg)
+            wg *= 2.0
+            sg += wg * c * c
+            if abs(c) < 1e-17 * ag:
+                break
+        kk = pi / (2.0 * ag)
+        ee = kk * (1.0 - sg)
         if (ee / (1.0 - m) - kk) / (kk - ee) > ratio:
             lo = kap                 # too eccentric: raise kappa
         else:
@@ -302,17 +301,11 @@ def _acos(x):
 
 
 def _ball_sums(delta_r, delta_a, geom, k_n, clearance_diametral, phase):
-    return _ball_sums_fast(delta_r, delta_a, geom.n_balls, cos(radians(geom.contact_angle_deg)),
-                           sin(radians(geom.contact_angle_deg)), k_n, clearance_diametral, phase)
-
-
-@register_jitable
-def _ball_sums_fast(delta_r, delta_a, n_balls, ca, sa, k_n, clearance_diametral, phase):
-    """(F_r, F_a, Q_max) the balls carry at ring displacements (delta_r, delta_a): Hertz Q = K_n d^1.5
-    on every ball with d > 0, d = delta_a sin a + (delta_r cos psi - P_d / 2) cos a."""
+    ca = cos(radians(geom.contact_angle_deg))
+    sa = sin(radians(geom.contact_angle_deg))
     fr = fa = qmax = 0.0
-    for j in range(n_balls):
-        psi = phase + 2.0 * pi * j / n_balls
+    for j in range(geom.n_balls):
+        psi = phase + 2.0 * pi * j / geom.n_balls
         d = delta_a * sa + (delta_r * cos(psi) - 0.5 * clearance_diametral) * ca
         if d > 0.0:
             q = k_n * d ** 1.5
@@ -358,7 +351,19 @@ def ball_loads_fast(f_radial, f_axial, n_balls, contact_angle_rad, k_n, clearanc
     sa = sin(contact_angle_rad)
 
     def sums(dr, da):
-        return _ball_sums_fast(dr, da, n_balls, ca, sa, k_n, clearance_diametral, phase)
+        fr = 0.0
+        fa = 0.0
+        qmax = 0.0
+        for j in range(n_balls):
+            psi = phase + 2.0 * pi * j / n_balls
+            d = da * sa + (dr * cos(psi) - 0.5 * clearance_diametral) * ca
+            if d > 0.0:
+                q = k_n * d ** 1.5
+                fr += q * ca * cos(psi)
+                fa += q * sa
+                if q > qmax:
+                    qmax = q
+        return fr, fa, qmax
 
     def dr_for(da, scale):
         if f_radial <= 0.0:
