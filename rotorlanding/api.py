@@ -27,6 +27,7 @@ import numpy as np
 
 from .config import load_toml
 from .errors import InputError
+from .safeio import atomic_write_text
 from .rotor import rotor_from_dict
 from .scenario import apply_overrides, scenario_from_dict
 
@@ -182,8 +183,8 @@ class Rotor:
         """Write the rotor as a rotor file (``[rotor]`` table) that :meth:`from_toml` and the
         command line (``rotorlanding modes PATH``) read back to the same model, bit for bit."""
         path = Path(path)
-        path.write_text(f"# rotor written by rotorlanding.Rotor.to_toml; units SI (m, kg, Pa, kg m^2)\n"
-                        + _toml_dump({"rotor": self.table}))
+        atomic_write_text(path, "# rotor written by rotorlanding.Rotor.to_toml; units SI (m, kg, Pa, kg m^2)\n"
+                          + _toml_dump({"rotor": self.table}))
         return path
 
     # properties of the validated model
@@ -348,8 +349,8 @@ class Scenario:
         """Write the fully resolved scenario as one TOML file (no includes) that
         :meth:`load` and ``rotorlanding run`` read back to the same scenario."""
         path = Path(path)
-        path.write_text("# scenario written by rotorlanding.Scenario.to_toml (includes resolved); units SI\n"
-                        + _toml_dump(self.model.raw))
+        atomic_write_text(path, "# scenario written by rotorlanding.Scenario.to_toml (includes resolved); units SI\n"
+                          + _toml_dump(self.model.raw))
         return path
 
     @property
@@ -469,8 +470,6 @@ class Landing:
     @classmethod
     def load(cls, path) -> "Landing":
         """Read a results.h5 written by :meth:`save` or ``rotorlanding run``."""
-        import h5py
-
         from .results import read_results
 
         path = Path(path)
@@ -478,8 +477,7 @@ class Landing:
             raise InputError("results file", str(path), "no such file")
         try:
             res = read_results(path)
-            with h5py.File(path, "r") as h5:
-                units = {k: h5["series"][k].attrs["unit"] for k in h5["series"]}
+            units = res["units"]
         except (OSError, KeyError) as exc:
             raise InputError("results file", str(path), f"not a rotorlanding results.h5 ({exc})") from None
         if res["attrs"].get("kind") == "coastdown":

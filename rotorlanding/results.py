@@ -191,6 +191,7 @@ def read_results(path) -> dict:
                "time_s": h5["time_s"][()], "q": h5["states/q"][()], "v": h5["states/v"][()],
                "names": json.loads(h5["states/q"].attrs["names"]),
                "series": {k: h5["series"][k][()] for k in h5["series"]},
+               "units": {k: str(h5["series"][k].attrs.get("unit", "")) for k in h5["series"]},
                "summary": json.loads(h5["summary_json"][()])}
     return out
 

@@ -84,28 +84,21 @@ def test_energy_balance_half_second_landing_at_7000rpm():
     assert all(val >= -1e-9 for val in e["dissipated_j"].values())
 
 
-def test_energy_balance_with_worn_bearing_drag():
-    """The worn-bearing drag torque is accounted for: its dissipation is positive and the
-    energy balance still closes (independent check of the drag's sign and power bookkeeping)."""
-    sc = _scenario(operating__t_end=0.25, solver__output_period=5e-5, effects__worn_bearing_drag=True,
-                   bearings__DE__worn_drag_torque=1.0, bearings__NDE__worn_drag_torque=1.0)
-    spec, t, q, v, info = simulate(sc, progress=False)
-    assert info["complete"]
-    e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
+@pytest.mark.parametrize("law, value", [
     # a race rolling at ~700 rad/s against 2 x 1 N m loses > 100 W; over > 0.1 s that is > 10 J
-    assert e["dissipated_j"]["worn_bearing_drag"] > 10.0
-    assert e["balance_error_relative"] < 0.01, e
-
-
-def test_energy_balance_with_load_proportional_worn_drag():
-    """The worn bearing's load-proportional drag (ball contacts sliding, worn_drag_friction) is
-    accounted for the same way: positive dissipation, and the energy balance closes."""
+    ("worn_drag_torque", 1.0),
+    # the load-proportional part: a few hundred N at ~700 rad/s, 0.05 x 0.0425 m x 300 N x 700 rad/s ~ 0.45 kW
+    ("worn_drag_friction", 0.05),
+])
+def test_energy_balance_with_worn_bearing_drag(law, value):
+    """The worn-bearing drag (its load-independent torque, or its load-proportional part: ball
+    contacts sliding) is accounted for: its dissipation is positive and the energy balance still
+    closes (independent check of the drag's sign and power bookkeeping)."""
     sc = _scenario(operating__t_end=0.25, solver__output_period=5e-5, effects__worn_bearing_drag=True,
-                   bearings__DE__worn_drag_friction=0.05, bearings__NDE__worn_drag_friction=0.05)
+                   **{f"bearings__DE__{law}": value, f"bearings__NDE__{law}": value})
     spec, t, q, v, info = simulate(sc, progress=False)
     assert info["complete"]
     e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
-    # the race carries a few hundred N at ~700 rad/s: 0.05 x 0.0425 m x 300 N x 700 rad/s ~ 0.45 kW
     assert e["dissipated_j"]["worn_bearing_drag"] > 10.0
     assert e["balance_error_relative"] < 0.01, e
 
