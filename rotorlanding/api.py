@@ -179,6 +179,28 @@ class Rotor:
             raise InputError("rotor", None, "missing required table [rotor]", file=str(path))
         return cls.from_table(data["rotor"], source=str(path))
 
+    @classmethod
+    def from_ross(cls, source, *, catchers: dict | None = None, catcher_nodes: dict | None = None,
+                  reduction_modes: int = 8, name: str | None = None, max_speed_rpm: float | None = None,
+                  ignore=()) -> "Rotor":
+        """A rotor from ROSS: a file written by ``ross.Rotor.save`` (.toml or .json, read without
+        ROSS) or a live ``ross.Rotor`` (``pip install '.[ross]'``). Shaft elements (uniform,
+        hollow, conical), disks, point masses and constant-coefficient bearings (as ``supports``
+        for :meth:`modes`) convert; anything else raises a one-line :class:`InputError` naming
+        the element and why (``ignore=[tag or class]`` leaves elements out on purpose).
+
+        ``catchers``: {station name: x [m]} or ``catcher_nodes``: {station name: ROSS node}: the
+        catcher-bearing sleeves, which become stations and the Craig-Bampton boundary
+        (``reduction_modes`` fixed-interface modes) so that the rotor can land
+        (:meth:`Scenario.with_rotor`). ``max_speed_rpm`` [rpm] (default: the file's, else 10000).
+        Mapping and limits: ``docs/ross.md``."""
+        from .from_ross import table_from_ross
+
+        table, src = table_from_ross(source, catchers=catchers, catcher_nodes=catcher_nodes,
+                                     reduction_modes=reduction_modes, name=name, max_speed_rpm=max_speed_rpm,
+                                     ignore=ignore)
+        return cls.from_table(table, source=src)
+
     def to_toml(self, path) -> Path:
         """Write the rotor as a rotor file (``[rotor]`` table) that :meth:`from_toml` and the
         command line (``rotorlanding modes PATH``) read back to the same model, bit for bit."""

@@ -60,14 +60,48 @@ class ShaftSection:
     inner_diameter: float  # m
     material: Material
     elements: int
+    # a conical (tapered) section: the diameters at its right end, linear in x in between (None:
+    # uniform, the left values); ROSS's conical shaft elements map onto it (docs/ross.md)
+    outer_diameter_right: float | None = None  # m
+    inner_diameter_right: float | None = None  # m
+
+    @property
+    def tapered(self) -> bool:
+        return self.outer_diameter_right is not None or self.inner_diameter_right is not None
+
+    def diameters(self, xi: float) -> tuple[float, float]:
+        """(outer, inner) diameter [m] at xi = (x - x_left) / length, linear along the section."""
+        if not self.tapered:
+            return self.outer_diameter, self.inner_diameter
+        do_r = self.outer_diameter if self.outer_diameter_right is None else self.outer_diameter_right
+        di_r = self.inner_diameter if self.inner_diameter_right is None else self.inner_diameter_right
+        return (self.outer_diameter + (do_r - self.outer_diameter) * xi,
+                self.inner_diameter + (di_r - self.inner_diameter) * xi)
+
+    @property
+    def max_outer_diameter(self) -> float:
+        return max(self.diameters(0.0)[0], self.diameters(1.0)[0])
 
     @property
     def area(self) -> float:
+        """m^2; of a tapered section, its mean over the length (volume / length)."""
+        if self.tapered:
+            return math.pi / 4.0 * (_mean_power(self, 0, 2) - _mean_power(self, 1, 2))
         return math.pi / 4.0 * (self.outer_diameter**2 - self.inner_diameter**2)
 
     @property
     def second_moment(self) -> float:
+        """m^4; of a tapered section, its mean over the length (so polar inertia = rho 2 I L)."""
+        if self.tapered:
+            return math.pi / 64.0 * (_mean_power(self, 0, 4) - _mean_power(self, 1, 4))
         return math.pi / 64.0 * (self.outer_diameter**4 - self.inner_diameter**4)
+
+
+def _mean_power(sec: ShaftSection, which: int, p: int) -> float:
+    """Mean over a tapered section of (its outer, which=0, or inner, which=1, diameter)^p for a
+    diameter linear in x: (a^p + a^(p-1) b + ... + b^p) / (p + 1)."""
+    a, b = sec.diameters(0.0)[which], sec.diameters(1.0)[which]
+    return sum(a ** (p - k) * b ** k for k in range(p + 1)) / (p + 1)
 
 
 @dataclass(frozen=True)
@@ -121,7 +155,8 @@ class Rotor:
     @property
     def polar_inertia(self) -> float:
         """kg m^2 about the spin axis: shaft sections and disks."""
-        return sum(s.material.density * s.length * math.pi / 32.0 * (s.outer_diameter ** 4 - s.inner_diameter ** 4)
+        return sum(s.material.density * s.length * (2.0 * s.second_moment if s.tapered else
+                                                    math.pi / 32.0 * (s.outer_diameter ** 4 - s.inner_diameter ** 4))
                    for s in self.sections) + sum(d.polar_inertia for d in self.disks)
 
     @property
@@ -139,8 +174,8 @@ class Rotor:
 
         best = (math.inf, "")
         for i, s in enumerate(self.sections):
-            omega = v_burst(s.material) / (s.outer_diameter / 2.0)
-            best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.outer_diameter:g} m)"))
+            omega = v_burst(s.material) / (s.max_outer_diameter / 2.0)
+            best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.max_outer_diameter:g} m)"))
         if self.disks:
             light = min((s.material for s in self.sections), key=lambda m: m.density)
             for i, d in enumerate(self.disks):
@@ -233,12 +268,20 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
         d_in = s.number("inner_diameter", 0.0, nonnegative=True)
         if d_in >= d_out:
             raise InputError(f"{s.path}.inner_diameter", d_in, f"must be < outer_diameter ({d_out})")
+        d_out_r = _dimension(s, "outer_diameter_right") if s.has("outer_diameter_right") else None
+        d_in_r = s.number("inner_diameter_right", nonnegative=True) if s.has("inner_diameter_right") else None
+        if d_out_r is not None or d_in_r is not None:
+            right_out = d_out if d_out_r is None else d_out_r
+            right_in = d_in if d_in_r is None else d_in_r
+            if right_in >= right_out:
+                raise InputError(f"{s.path}.inner_diameter_right", right_in,
+                                 f"must be < the outer diameter at the right end ({right_out})")
         mat_name = s.string("material")
         if mat_name not in materials:
             raise InputError(f"{s.path}.material", mat_name, f"unknown material; defined: {', '.join(materials)}")
         n_el = s.integer("elements", 1)
         s.finish()
-        sections.append(ShaftSection(length, d_out, d_in, materials[mat_name], n_el))
+        sections.append(ShaftSection(length, d_out, d_in, materials[mat_name], n_el, d_out_r, d_in_r))
     if not sections:
         raise InputError("rotor.sections", [], "define at least one shaft section")
     total = sum(s.length for s in sections)
@@ -340,10 +383,16 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
 
 
 def load_rotor(path) -> Rotor:
-    """Read the ``[rotor]`` table of a rotor file or of a scenario file that contains one."""
+    """Read the ``[rotor]`` table of a rotor file or of a scenario file that contains one, or a
+    rotor file written by ROSS's ``Rotor.save`` (converted by :mod:`rotorlanding.from_ross`)."""
     path = Path(path)
     try:
         data = load_toml(path)
     except InputError as err:
         raise err.with_file(str(path)) from None
+    if "rotor" not in data:
+        from .from_ross import is_ross_layout, rotor_table
+
+        if is_ross_layout(data):
+            return rotor_from_dict({"rotor": rotor_table(data, source=str(path))}, source=str(path))
     return rotor_from_dict(data, source=str(path))
