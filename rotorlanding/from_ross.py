@@ -97,13 +97,20 @@ def _scalar(file, key, el: dict, name: str, default=0.0):
         if not vals:
             return float(default)
         if any(x != vals[0] for x in vals):
-            _fail(file, f"{key}.{name}", v, f"frequency-dependent coefficients ({len(vals)} values over "
-                  f"frequency {el.get('frequency')!r} rad/s) cannot be converted: rotorlanding's supports are "
-                  "constant; give one value per coefficient in ROSS (the one at the speed you study)")
+            freq = [float(f) for f in el.get("frequency") or [] if isinstance(f, (int, float))]
+            over = f" at {min(freq):g}-{max(freq):g} rad/s" if freq else ""
+            _fail(file, f"{key}.{name}", _short(vals), f"frequency-dependent coefficients ({len(vals)} values{over}): "
+                  "rotorlanding's supports are constant; give one value per coefficient in ROSS (the one at the "
+                  "speed you study)")
         return vals[0]
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
         _fail(file, f"{key}.{name}", v, "must be a finite number")
     return float(v)
+
+
+def _short(vals: list) -> str:
+    """A long list as its ends, for a one-line message."""
+    return repr(vals) if len(vals) <= 3 else f"[{vals[0]:.6g}, {vals[1]:.6g}, ..., {vals[-1]:.6g}]"
 
 
 def _number(file, key, el: dict, name: str, default=None):
@@ -213,8 +220,8 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
             try:
                 for m in ("mxx", "myy", "mxy", "myx"):
                     if _scalar(file, key, el, m) != 0.0:
-                        raise InputError(f"{key}.{m}", el[m], "bearing mass coefficients cannot be converted "
-                                         "(rotorlanding's supports are stiffness and damping)")
+                        raise InputError(f"{key}.{m}", el[m], "bearing mass coefficients: rotorlanding's supports "
+                                         "are stiffness and damping")
                 coef = {ours: _scalar(file, key, el, theirs) for ours, theirs in (
                     ("kyy", "kxx"), ("kzz", "kyy"), ("kyz", "kxy"), ("kzy", "kyx"),
                     ("cyy", "cxx"), ("czz", "cyy"), ("cyz", "cxy"), ("czy", "cyx"))}
@@ -227,7 +234,8 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
             problems.append((key, cls, why))
     if problems:
         key, value, why = problems[0]
-        more = f" (and {len(problems) - 1} more: {', '.join(p[0] for p in problems[1:])})" if len(problems) > 1 else ""
+        others = [p[0] for p in problems[1:]]
+        more = f" (and {len(others)} more: {', '.join(others[:3])}{', ...' if len(others) > 3 else ''})" if others else ""
         _fail(file, key, value, f"cannot be converted: {why}{more}; rotorlanding converts shaft elements, disks, "
               "point masses and bearings with constant coefficients (ignore=[tag or class] leaves elements out)")
     if not shafts:
