@@ -81,18 +81,21 @@ draw_rotor(rotor, args.out / "rotor.png")
 
 # natural frequencies on the ROSS bearings (the supports), the same as ROSS's own (docs/ross.md)
 modes = rotor.modes([0.0, 7000.0], n_modes=4)
-for speed, f, w in zip(modes.speeds_rpm, modes.frequencies_hz, modes.whirl):
-    print(f"{speed:6.0f} rpm: " + ", ".join(f"{x:.1f} Hz {s}" for x, s in zip(f, w)))
+table = modes.to_dict()
+for speed, per_speed in zip(table["speeds_rpm"], table["modes"]):
+    print(f"{speed:6.0f} rpm:", "  ".join(f"{m['frequency_hz']:.1f} Hz ({m['whirl']}, zeta {m['damping_ratio']:.3f})"
+                                         for m in per_speed))
 modes.campbell(args.out / "campbell.png", points=5 if args.short else 41)
 
 # drop it from 7000 rpm onto the rig's catcher bearings (the AMBs switch off at t = 0)
 scenario = rl.Scenario.load(SCENARIOS / "landing_7000rpm.toml").with_rotor(rotor)
 landing = rl.simulate(scenario, t_end=0.05 if args.short else 0.5)
 print(landing)
-for b, s in landing.summary["bearings"].items():
-    print(f"{b}: peak force on the rotor {s['max_contact_force_n']:.0f} N, "
-          f"vertical range {s['vertical_displacement_range_m'][0] * 1e3:+.3f} mm")
-print(f"whirl: {landing.whirl['direction']}")
+peaks = {b: s["max_contact_force_n"] for b, s in landing.summary["bearings"].items()}
+print("peak contact force on the rotor:", ", ".join(f"{b} {f / 1e3:.2f} kN" for b, f in peaks.items()),
+      f"(rotor weight {rotor.mass * 9.80665 / 1e3:.2f} kN)")
+w = landing.whirl
+print(f"whirl: {w['direction']}" + (f" at {w['frequency_hz']:.1f} Hz from {w['onset_s']:.3f} s" if w["frequency_hz"] else ""))
 landing.plot_orbits(args.out / "orbits.png")
 landing.plot_displacements(args.out / "displacements.png")
 landing.plot_forces(args.out / "forces.png")

@@ -25,7 +25,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import load_toml
 from .errors import InputError
 from .safeio import atomic_write_text
 from .rotor import rotor_from_dict
@@ -169,15 +168,11 @@ class Rotor:
 
     @classmethod
     def from_toml(cls, path) -> "Rotor":
-        """Read the ``[rotor]`` table of a rotor file or of a scenario file (``include`` resolved)."""
-        path = Path(path)
-        try:
-            data = load_toml(path)
-        except InputError as err:
-            raise err.with_file(str(path)) from None
-        if "rotor" not in data:
-            raise InputError("rotor", None, "missing required table [rotor]", file=str(path))
-        return cls.from_table(data["rotor"], source=str(path))
+        """Read the ``[rotor]`` table of a rotor file or of a scenario file (``include`` resolved),
+        or a rotor saved by ROSS (as :meth:`from_ross` without catcher stations)."""
+        from .rotor import read_rotor_table
+
+        return cls.from_table(read_rotor_table(path), source=str(Path(path)))
 
     @classmethod
     def from_ross(cls, source, *, catchers: dict | None = None, catcher_nodes: dict | None = None,

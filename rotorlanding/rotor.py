@@ -382,9 +382,10 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     return rotor
 
 
-def load_rotor(path) -> Rotor:
-    """Read the ``[rotor]`` table of a rotor file or of a scenario file that contains one, or a
-    rotor file written by ROSS's ``Rotor.save`` (converted by :mod:`rotorlanding.from_ross`)."""
+def read_rotor_table(path) -> dict:
+    """The ``[rotor]`` table of a rotor file, of a scenario file that contains one (``include``
+    resolved), or of a rotor file written by ROSS's ``Rotor.save`` (converted by
+    :mod:`rotorlanding.from_ross`). Not validated yet."""
     path = Path(path)
     try:
         data = load_toml(path)
@@ -394,5 +395,12 @@ def load_rotor(path) -> Rotor:
         from .from_ross import is_ross_layout, rotor_table
 
         if is_ross_layout(data):
-            return rotor_from_dict({"rotor": rotor_table(data, source=str(path))}, source=str(path))
-    return rotor_from_dict(data, source=str(path))
+            return rotor_table(data, source=str(path))
+        raise InputError("rotor", None, "missing required table [rotor] (nor is it a rotor saved by ROSS)",
+                         file=str(path))
+    return data["rotor"]
+
+
+def load_rotor(path) -> Rotor:
+    """Read and validate the rotor of a rotor, scenario or ROSS file (:func:`read_rotor_table`)."""
+    return rotor_from_dict({"rotor": read_rotor_table(path)}, source=str(path))

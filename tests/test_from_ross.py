@@ -194,3 +194,12 @@ def test_live_ross_rotor_converts():
         if wd > 0 and sum(v[j::nd].sum() for j in (0, 1, 3, 4)) > 0.99 * v.sum():
             lateral.append(wd / (2 * math.pi))
     np.testing.assert_allclose(ours, sorted(lateral)[:8], rtol=RTOL)
+
+
+def test_from_toml_reads_a_ross_file_and_names_a_file_that_is_neither(tmp_path):
+    a = rl.Rotor.from_toml(FIX / "rotor_example.toml").fe()
+    assert np.array_equal(a.K, rl.Rotor.from_ross(FIX / "rotor_example.toml").fe().K)
+    other = tmp_path / "other.toml"
+    other.write_text("[parameters]\nx = 1\n")
+    with pytest.raises(rl.InputError, match=r"other\.toml: rotor = None: missing required table \[rotor\] \(nor"):
+        rl.Rotor.from_toml(other)
