@@ -177,7 +177,7 @@ class Rotor:
     @classmethod
     def from_ross(cls, source, *, catchers: dict | None = None, catcher_nodes: dict | None = None,
                   reduction_modes: int = 8, name: str | None = None, max_speed_rpm: float | None = None,
-                  ignore=()) -> "Rotor":
+                  ignore=(), bearings_at_rpm: float | None = None) -> "Rotor":
         """A rotor from ROSS: a file written by ``ross.Rotor.save`` (.toml or .json, read without
         ROSS) or a live ``ross.Rotor`` (``pip install '.[ross]'``). Shaft elements (uniform,
         hollow, conical), disks, point masses and constant-coefficient bearings (as ``supports``
@@ -188,12 +188,13 @@ class Rotor:
         catcher-bearing sleeves, which become stations and the Craig-Bampton boundary
         (``reduction_modes`` fixed-interface modes) so that the rotor can land
         (:meth:`Scenario.with_rotor`). ``max_speed_rpm`` [rpm] (default: the file's, else 10000).
-        Mapping and limits: ``docs/ross.md``."""
+        ``bearings_at_rpm`` [rpm]: freeze frequency-dependent bearing coefficients at this spin
+        speed (as ROSS's ``run_modal`` at that speed). Mapping and limits: ``docs/ross.md``."""
         from .from_ross import table_from_ross
 
         table, src = table_from_ross(source, catchers=catchers, catcher_nodes=catcher_nodes,
                                      reduction_modes=reduction_modes, name=name, max_speed_rpm=max_speed_rpm,
-                                     ignore=ignore)
+                                     ignore=ignore, bearings_at_rpm=bearings_at_rpm)
         return cls.from_table(table, source=src)
 
     def to_toml(self, path) -> Path:

@@ -89,23 +89,49 @@ def _fail(file, key, value, allowed):
     raise InputError(key, value, allowed, file=file)
 
 
-def _scalar(file, key, el: dict, name: str, default=0.0):
-    """A bearing coefficient: a number, or a list (per frequency) whose values are all equal."""
+def _scalar(file, key, el: dict, name: str, default=0.0, at: float | None = None):
+    """A bearing coefficient: a number, or a list (per frequency) whose values are all equal, or,
+    given ``at`` [rad/s], a frequency-dependent list evaluated there as ROSS evaluates it."""
     v = el.get(name, default)
     if isinstance(v, (list, tuple)):
+        if not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in v):
+            _fail(file, f"{key}.{name}", v, "must be finite numbers")
         vals = [float(x) for x in v]
         if not vals:
             return float(default)
         if any(x != vals[0] for x in vals):
-            freq = [float(f) for f in el.get("frequency") or [] if isinstance(f, (int, float))]
-            over = f" at {min(freq):g}-{max(freq):g} rad/s" if freq else ""
-            _fail(file, f"{key}.{name}", _short(vals), f"frequency-dependent coefficients ({len(vals)} values{over}): "
-                  "rotorlanding's supports are constant; give one value per coefficient in ROSS (the one at the "
-                  "speed you study)")
+            freq = el.get("frequency")
+            if not (isinstance(freq, list) and len(freq) == len(vals)
+                    and all(isinstance(f, (int, float)) and not isinstance(f, bool) for f in freq)):
+                _fail(file, f"{key}.frequency", freq, f"must be a list of {len(vals)} numbers [rad/s], one per "
+                      f"value of {name}")
+            if at is None:
+                _fail(file, f"{key}.{name}", _short(vals), f"frequency-dependent coefficients ({len(vals)} values at "
+                      f"{min(freq):g}-{max(freq):g} rad/s): rotorlanding's supports are constant; give one value per "
+                      "coefficient in ROSS, or convert with bearings_at_rpm=SPEED (the coefficients at that speed, as "
+                      "ROSS's run_modal takes them)")
+            return _ross_interpolation([float(f) for f in freq], vals, at)
         return vals[0]
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
         _fail(file, f"{key}.{name}", v, "must be a finite number")
     return float(v)
+
+
+def _ross_interpolation(freq: list, vals: list, at: float) -> float:
+    """A frequency-dependent bearing coefficient at ``at`` [rad/s], interpolated as ROSS 2.x's
+    ``BearingElement`` does (``_process_coefficient``): scipy's smoothing spline
+    ``UnivariateSpline(frequency, values)`` (cubic, default smoothing), or, where that cannot be
+    built (2 or 3 points), ``interp1d`` of degree points - 1, extrapolating."""
+    import warnings
+
+    from scipy import interpolate
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return float(interpolate.UnivariateSpline(freq, vals)(at))
+    except Exception:  # scipy raises its internal dfitpack error for too few points, as ROSS notes
+        return float(interpolate.interp1d(freq, vals, kind=len(freq) - 1, fill_value="extrapolate")(at))
 
 
 def _short(vals: list) -> str:
@@ -179,13 +205,21 @@ def _station_name(tag: str, used: set) -> str:
 
 def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None = None,
                 catcher_nodes: dict | None = None, reduction_modes: int = 8, name: str | None = None,
-                max_speed_rpm: float | None = None, ignore=()) -> dict:
+                max_speed_rpm: float | None = None, ignore=(), bearings_at_rpm: float | None = None) -> dict:
     """The ``[rotor]`` table (dict) of a ROSS rotor given as the dict its ``Rotor.save`` file parses
     to. ``catchers``: {station name: x [m]}; ``catcher_nodes``: {station name: ROSS node number};
     they become stations and the Craig-Bampton boundary (``reduction_modes`` fixed-interface modes).
-    ``ignore``: element tags or class names to leave out on purpose. Raises :class:`InputError`
-    (one line: file, element, value, why) for what cannot be converted."""
+    ``ignore``: element tags or class names to leave out on purpose. ``bearings_at_rpm``: evaluate
+    frequency-dependent bearing coefficients at this spin speed [rpm] (ROSS's ``run_modal`` takes
+    them at the spin frequency) and keep them constant. Raises :class:`InputError` (one line: file,
+    element, value, why) for what cannot be converted."""
     file = source
+    at = None
+    if bearings_at_rpm is not None:
+        if isinstance(bearings_at_rpm, bool) or not isinstance(bearings_at_rpm, (int, float)) \
+                or not math.isfinite(bearings_at_rpm) or bearings_at_rpm < 0:
+            _fail(file, "bearings_at_rpm", bearings_at_rpm, "must be a spin speed >= 0 rpm")
+        at = bearings_at_rpm * math.pi / 30.0
     if not is_ross_layout(data):
         _fail(file, "file", sorted(data)[:4] if isinstance(data, dict) else type(data).__name__,
               "not a rotor written by ross.Rotor.save (no [parameters]/ross_version with ShaftElement_<tag> tables)")
@@ -219,10 +253,10 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
                 continue
             try:
                 for m in ("mxx", "myy", "mxy", "myx"):
-                    if _scalar(file, key, el, m) != 0.0:
+                    if _scalar(file, key, el, m, at=at) != 0.0:
                         raise InputError(f"{key}.{m}", el[m], "bearing mass coefficients: rotorlanding's supports "
                                          "are stiffness and damping")
-                coef = {ours: _scalar(file, key, el, theirs) for ours, theirs in (
+                coef = {ours: _scalar(file, key, el, theirs, at=at) for ours, theirs in (
                     ("kyy", "kxx"), ("kzz", "kyy"), ("kyz", "kxy"), ("kzy", "kyx"),
                     ("cyy", "cxx"), ("czz", "cyy"), ("cyz", "cxy"), ("czy", "cyx"))}
             except InputError as err:

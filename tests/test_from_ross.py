@@ -20,8 +20,8 @@ from rotorlanding.timoshenko import assemble
 
 FIX = Path(__file__).resolve().parent / "fixtures" / "ross"
 REF = json.loads((FIX / "ross_frequencies.json").read_text())
-#: measured: 1.1e-12 (rotor_example), 3.9e-13 (compressor_like, conical and hollow elements),
-#: 2.9e-12 (disks_bearings): the two element formulations agree, so the bound is rounding (ROSS's own
+#: measured: 1.1e-12 (rotor_example), 4.2e-13 (compressor_like, conical and hollow elements),
+#: 1.7e-12 (disks_bearings), 2.1e-12 (frequency-dependent bearings at each speed): the two element formulations agree, so the bound is rounding (ROSS's own
 #: eigenvalues move by ~3e-12 between runs of make_fixtures.py)
 RTOL = 1e-9
 
@@ -203,3 +203,20 @@ def test_from_toml_reads_a_ross_file_and_names_a_file_that_is_neither(tmp_path):
     other.write_text("[parameters]\nx = 1\n")
     with pytest.raises(rl.InputError, match=r"other\.toml: rotor = None: missing required table \[rotor\] \(nor"):
         rl.Rotor.from_toml(other)
+
+
+def test_frequency_dependent_bearings_frozen_at_each_speed_match_ross():
+    # ROSS's run_modal takes frequency-dependent coefficients at the spin frequency (a smoothing
+    # spline over 5 points, linear over 2): converted at each speed, the frequencies agree there
+    ref = REF["frequency_dependent"]
+    worst = 0.0
+    for speed, theirs in zip(REF["speeds_rpm"], ref["frequencies_hz"]):
+        rotor = rl.Rotor.from_ross(FIX / ref["file"], bearings_at_rpm=speed)
+        ours = rotor.modes([speed], n_modes=len(theirs)).frequencies_hz[0]
+        worst = max(worst, float(np.max(np.abs(ours - theirs) / np.array(theirs))))
+    print(f"frequency-dependent bearings: largest relative difference to ROSS {worst:.2e}")
+    assert worst < RTOL
+    with pytest.raises(rl.InputError, match="bearings_at_rpm=SPEED"):
+        rl.Rotor.from_ross(FIX / ref["file"])
+    with pytest.raises(rl.InputError, match="bearings_at_rpm = -1"):
+        rl.Rotor.from_ross(FIX / ref["file"], bearings_at_rpm=-1.0)
