@@ -11,6 +11,8 @@ everything downstream (validation, ``modes``, landings) is the one rotor path. W
   exactly with phi from the mid-length section, as ROSS's conical element (Genta & Gugliotta 1988);
   the material's ``E``, ``G_s`` and ``rho`` become ``youngs_modulus``, ``shear_modulus`` and
   ``density`` (Poisson's ratio E / (2 G_s) - 1, as ROSS's ``Material``);
+- shaft elements sharing a node (coaxial layers) -> the innermost a section, the others its
+  ``layers`` (their matrices add on the same nodes, as in ROSS);
 - ``DiskElement`` -> ``[[rotor.disks]]`` at its node (``m``, ``Ip``, ``Id``); a ``PointMass`` with
   ``mx == my`` on a shaft node -> a disk with no inertia;
 - ``BearingElement`` (and the ball / roller bearing elements, saved with their coefficients) with
@@ -23,8 +25,8 @@ everything downstream (validation, ``modes``, landings) is the one rotor path. W
   stations and the Craig-Bampton boundary of ``[rotor.reduction]``.
 
 Anything else stops the conversion with one line naming the file, the element, its class and why
-(seals, frequency-dependent or linked bearings, bearing mass coefficients, coaxial shaft layers,
-elements without shear / rotary inertia / gyroscopics, axial force or torque, other shear
+(seals, frequency-dependent bearings unless ``bearings_at_rpm`` is given, linked bearings, bearing
+mass coefficients, elements without shear / rotary inertia / gyroscopics, axial force or torque, other shear
 coefficients, couplings, gears, ...). ``ignore=`` drops elements by tag or class on purpose.
 
 ROSS layouts: 2.x writes ``ross_version``, ``[parameters]`` and one table per element named
@@ -275,19 +277,27 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
     if not shafts:
         _fail(file, "ShaftElement", None, "no shaft element left to convert")
 
-    # node positions from the element lengths, in node order; coaxial layers (two elements on one
-    # node) have no series-section equivalent
-    shafts.sort(key=lambda s: s[1]["n"])
-    for (k0, a), (k1, b) in zip(shafts, shafts[1:]):
-        if b["n"] == a["n"]:
-            _fail(file, k1, f"n = {b['n']}", f"shares its node with {k0} (coaxial shaft layers): rotorlanding's "
-                  "sections are in series; merge the layers into one element in ROSS (or ignore one by tag)")
-        if b["n"] != a["n"] + 1:
-            _fail(file, k1, f"n = {b['n']}", f"leaves a gap after {k0} (n = {a['n']}): the shaft must be continuous")
-    n0 = shafts[0][1]["n"]
+    # node positions from the element lengths, in node order; elements sharing a node are coaxial
+    # layers (ROSS adds their matrices): the innermost is the section, the others its layers
+    by_node: dict[int, list] = {}
+    for key, s in shafts:
+        by_node.setdefault(s["n"], []).append((key, s))
+    groups = []
+    for n in sorted(by_node):
+        group = sorted(by_node[n], key=lambda ks: (ks[1]["idl"], ks[1]["odl"]))
+        for key, s in group[1:]:
+            if abs(s["L"] - group[0][1]["L"]) > 1e-12 * group[0][1]["L"]:
+                _fail(file, f"{key}.L", s["L"], f"a coaxial layer (same node n = {n} as {group[0][0]}) must have "
+                      f"its length, {group[0][1]['L']} m")
+        groups.append(group)
+    for g0, g1 in zip(groups, groups[1:]):
+        if g1[0][1]["n"] != g0[0][1]["n"] + 1:
+            _fail(file, g1[0][0], f"n = {g1[0][1]['n']}", f"leaves a gap after {g0[0][0]} (n = {g0[0][1]['n']}): "
+                  "the shaft must be continuous")
+    n0 = groups[0][0][1]["n"]
     x = [0.0]
-    for _, s in shafts:
-        x.append(x[-1] + s["L"])
+    for group in groups:
+        x.append(x[-1] + group[0][1]["L"])
 
     def position(key, n, what="n"):
         if not n0 <= n <= n0 + len(shafts):
@@ -301,8 +311,8 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
     alpha, beta = damping.pop()
 
     materials, mat_names = {}, {}
-    sections = []
-    for key, s in shafts:
+
+    def cross_section(s: dict) -> dict:
         mname, rho, e, g = s["material"]
         ident = (rho, e, g)
         if ident not in mat_names:
@@ -312,12 +322,18 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
                 nm, k = f"{base}_{k}", k + 1
             mat_names[ident] = nm
             materials[nm] = {"youngs_modulus": e, "shear_modulus": g, "density": rho}
-        sec = {"length": s["L"], "outer_diameter": s["odl"], "inner_diameter": s["idl"],
-               "material": mat_names[ident], "elements": 1}
+        out = {"outer_diameter": s["odl"], "inner_diameter": s["idl"], "material": mat_names[ident]}
         if s["odr"] != s["odl"]:
-            sec["outer_diameter_right"] = s["odr"]
+            out["outer_diameter_right"] = s["odr"]
         if s["idr"] != s["idl"]:
-            sec["inner_diameter_right"] = s["idr"]
+            out["inner_diameter_right"] = s["idr"]
+        return out
+
+    sections = []
+    for group in groups:
+        sec = {"length": group[0][1]["L"], **cross_section(group[0][1]), "elements": 1}
+        if len(group) > 1:
+            sec["layers"] = [cross_section(s) for _, s in group[1:]]
         sections.append(sec)
 
     used: set = set()

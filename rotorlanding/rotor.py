@@ -64,6 +64,15 @@ class ShaftSection:
     # uniform, the left values); ROSS's conical shaft elements map onto it (docs/ross.md)
     outer_diameter_right: float | None = None  # m
     inner_diameter_right: float | None = None  # m
+    # coaxial layers on the same length (a sleeve, an impeller hub modelled as a tube): each a
+    # ShaftSection of its own material and diameters whose element matrices add to this section's
+    # (ROSS's shaft elements sharing a node); their length and elements are this section's
+    layers: tuple["ShaftSection", ...] = ()
+
+    @property
+    def parts(self) -> tuple["ShaftSection", ...]:
+        """This section and its coaxial layers."""
+        return (self,) + self.layers
 
     @property
     def tapered(self) -> bool:
@@ -80,7 +89,8 @@ class ShaftSection:
 
     @property
     def max_outer_diameter(self) -> float:
-        return max(self.diameters(0.0)[0], self.diameters(1.0)[0])
+        """m: the largest outer diameter of the section and its layers."""
+        return max(max(p.diameters(0.0)[0], p.diameters(1.0)[0]) for p in self.parts)
 
     @property
     def area(self) -> float:
@@ -157,12 +167,13 @@ class Rotor:
         """kg m^2 about the spin axis: shaft sections and disks."""
         return sum(s.material.density * s.length * (2.0 * s.second_moment if s.tapered else
                                                     math.pi / 32.0 * (s.outer_diameter ** 4 - s.inner_diameter ** 4))
-                   for s in self.sections) + sum(d.polar_inertia for d in self.disks)
+                   for sec in self.sections for s in sec.parts) + sum(d.polar_inertia for d in self.disks)
 
     @property
     def mass(self) -> float:
         """kg: shaft sections and disks."""
-        return sum(s.area * s.length * s.material.density for s in self.sections) + sum(d.mass for d in self.disks)
+        return sum(s.area * s.length * s.material.density for sec in self.sections for s in sec.parts) + \
+            sum(d.mass for d in self.disks)
 
     def burst_speed_rpm(self) -> tuple[float, str]:
         """(speed [rpm], part) at which the first part would burst even if made of the strongest
@@ -173,9 +184,10 @@ class Rotor:
             return math.sqrt(8.0 * MAX_STRENGTH / ((3.0 + m.poisson_ratio) * m.density))
 
         best = (math.inf, "")
-        for i, s in enumerate(self.sections):
-            omega = v_burst(s.material) / (s.max_outer_diameter / 2.0)
-            best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.max_outer_diameter:g} m)"))
+        for i, sec in enumerate(self.sections):
+            for s in sec.parts:
+                omega = v_burst(s.material) / (s.max_outer_diameter / 2.0)
+                best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.max_outer_diameter:g} m)"))
         if self.disks:
             light = min((s.material for s in self.sections), key=lambda m: m.density)
             for i, d in enumerate(self.disks):
@@ -261,9 +273,8 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     if not materials:
         raise InputError("rotor.materials", {}, "define at least one material")
 
-    sections = []
-    for s in r.array_of_tables("sections"):
-        length = _dimension(s, "length")
+    def cross_section(s: _Table) -> tuple:
+        """(outer, inner, material, outer at the right end, inner at the right end) of a section or layer."""
         d_out = _dimension(s, "outer_diameter")
         d_in = s.number("inner_diameter", 0.0, nonnegative=True)
         if d_in >= d_out:
@@ -279,9 +290,20 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
         mat_name = s.string("material")
         if mat_name not in materials:
             raise InputError(f"{s.path}.material", mat_name, f"unknown material; defined: {', '.join(materials)}")
+        return d_out, d_in, materials[mat_name], d_out_r, d_in_r
+
+    sections = []
+    for s in r.array_of_tables("sections"):
+        length = _dimension(s, "length")
+        d_out, d_in, mat, d_out_r, d_in_r = cross_section(s)
         n_el = s.integer("elements", 1)
+        layers = []
+        for lay in s.array_of_tables("layers", []):
+            lo, li, lm, lo_r, li_r = cross_section(lay)
+            lay.finish()
+            layers.append(ShaftSection(length, lo, li, lm, n_el, lo_r, li_r))
         s.finish()
-        sections.append(ShaftSection(length, d_out, d_in, materials[mat_name], n_el, d_out_r, d_in_r))
+        sections.append(ShaftSection(length, d_out, d_in, mat, n_el, d_out_r, d_in_r, tuple(layers)))
     if not sections:
         raise InputError("rotor.sections", [], "define at least one shaft section")
     total = sum(s.length for s in sections)

@@ -217,31 +217,31 @@ def assemble(rotor: Rotor) -> RotorFE:
     ip_total = 0.0
     starts = np.concatenate([[0.0], np.cumsum([s.length for s in rotor.sections])])
     for e, si in enumerate(owner):
-        sec = rotor.sections[si]
-        mat = sec.material
-        L = nodes[e + 1] - nodes[e]
-        if sec.tapered:
-            # the element's end diameters on the section's linear taper; kappa from the mean
-            # diameters and phi from the mid-length section, as ROSS's conical element
-            (do_l, di_l), (do_r, di_r) = (sec.diameters((x - starts[si]) / sec.length) for x in nodes[e:e + 2])
-            taper = (do_l, di_l, do_r, di_r)
-            kappa = cowper_shear_coefficient(mat.poisson_ratio, 0.5 * (di_l + di_r), 0.5 * (do_l + do_r))
-            a_mid, i_mid = _section_properties(taper, 0.5)
-            me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
-                                          a_mid, i_mid, kappa, taper)
-            a_mean = sum(w * _section_properties(taper, xi)[0] for xi, w in zip(_GAUSS_XI, _GAUSS_W))
-            i_mean = sum(w * _section_properties(taper, xi)[1] for xi, w in zip(_GAUSS_XI, _GAUSS_W))
-        else:
-            kappa = cowper_shear_coefficient(mat.poisson_ratio, sec.inner_diameter, sec.outer_diameter)
-            me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
-                                          sec.area, sec.second_moment, kappa)
-            a_mean, i_mean = sec.area, sec.second_moment
-        idx = slice(NDOF_NODE * e, NDOF_NODE * (e + 2))
-        M[idx, idx] += me
-        K[idx, idx] += ke
-        G[idx, idx] += ge
-        mass += mat.density * a_mean * L
-        ip_total += mat.density * 2.0 * i_mean * L
+        for sec in rotor.sections[si].parts:  # the section, then its coaxial layers on the same nodes
+            mat = sec.material
+            L = nodes[e + 1] - nodes[e]
+            if sec.tapered:
+                # the element's end diameters on the section's linear taper; kappa from the mean
+                # diameters and phi from the mid-length section, as ROSS's conical element
+                (do_l, di_l), (do_r, di_r) = (sec.diameters((x - starts[si]) / sec.length) for x in nodes[e:e + 2])
+                taper = (do_l, di_l, do_r, di_r)
+                kappa = cowper_shear_coefficient(mat.poisson_ratio, 0.5 * (di_l + di_r), 0.5 * (do_l + do_r))
+                a_mid, i_mid = _section_properties(taper, 0.5)
+                me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
+                                              a_mid, i_mid, kappa, taper)
+                a_mean = sum(w * _section_properties(taper, xi)[0] for xi, w in zip(_GAUSS_XI, _GAUSS_W))
+                i_mean = sum(w * _section_properties(taper, xi)[1] for xi, w in zip(_GAUSS_XI, _GAUSS_W))
+            else:
+                kappa = cowper_shear_coefficient(mat.poisson_ratio, sec.inner_diameter, sec.outer_diameter)
+                me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
+                                              sec.area, sec.second_moment, kappa)
+                a_mean, i_mean = sec.area, sec.second_moment
+            idx = slice(NDOF_NODE * e, NDOF_NODE * (e + 2))
+            M[idx, idx] += me
+            K[idx, idx] += ke
+            G[idx, idx] += ge
+            mass += mat.density * a_mean * L
+            ip_total += mat.density * 2.0 * i_mean * L
 
     def node_at(x: float) -> int:
         return int(np.argmin(np.abs(nodes - x)))
