@@ -110,8 +110,8 @@ def _scalar(file, key, el: dict, name: str, default=0.0, at: float | None = None
             if at is None:
                 _fail(file, f"{key}.{name}", _short(vals), f"frequency-dependent coefficients ({len(vals)} values at "
                       f"{min(freq):g}-{max(freq):g} rad/s): rotorlanding's supports are constant; give one value per "
-                      "coefficient in ROSS, or convert with bearings_at_rpm=SPEED (the coefficients at that speed, as "
-                      "ROSS's run_modal takes them)")
+                      "coefficient in ROSS, or convert in Python with rl.Rotor.from_ross(..., bearings_at_rpm=SPEED) "
+                      "(the coefficients at that speed, as ROSS's run_modal takes them)")
             return _ross_interpolation([float(f) for f in freq], vals, at)
         return vals[0]
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
@@ -244,14 +244,14 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
             if "m" in el:
                 mx = my = _number(file, key, el, "m")
             if mx != my:
-                problems.append((key, cls, f"a point mass with mx != my ({mx} != {my} kg) cannot be converted "
-                                 "(rotorlanding's disks are axisymmetric)"))
+                problems.append((key, cls, f"a point mass with mx != my ({mx} != {my} kg): rotorlanding's disks are "
+                                 "axisymmetric"))
                 continue
             disks.append((key, tag, _node(file, key, el), mx, 0.0, 0.0))
         elif cls in BEARING_CLASSES:
             if el.get("n_link") is not None:
-                problems.append((key, cls, f"a bearing linked to node {el['n_link']} (a support structure) cannot "
-                                 "be converted: rotorlanding's supports connect the rotor to the ground"))
+                problems.append((key, cls, f"a bearing linked to node {el['n_link']} (a support structure): "
+                                 "rotorlanding's supports connect the rotor to the ground"))
                 continue
             try:
                 for m in ("mxx", "myy", "mxy", "myx"):
