@@ -387,6 +387,24 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
     return table
 
 
+def has_speed_dependent_bearings(path) -> bool:
+    """True when ``path`` is a ROSS rotor file with a bearing whose coefficients vary with
+    frequency (the command line then takes them at each spin speed, as ROSS's ``run_modal``).
+    Any file that cannot be read so answers False (the rotor reader names its problem)."""
+    try:
+        data = read_ross_file(path)
+    except InputError:
+        return False
+    if not is_ross_layout(data):
+        return False
+    for key, el in data.items():
+        if isinstance(el, dict) and _class_of(key) in BEARING_CLASSES:
+            for v in el.values():
+                if isinstance(v, list) and len(v) > 1 and any(x != v[0] for x in v) and v is not el.get("frequency"):
+                    return True
+    return False
+
+
 def read_ross_file(path) -> dict:
     """The dict of a ROSS rotor file (``.toml`` or ``.json``), without ROSS."""
     path = Path(path)

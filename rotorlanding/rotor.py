@@ -404,10 +404,10 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     return rotor
 
 
-def read_rotor_table(path) -> dict:
+def read_rotor_table(path, **ross) -> dict:
     """The ``[rotor]`` table of a rotor file, of a scenario file that contains one (``include``
     resolved), or of a rotor file written by ROSS's ``Rotor.save`` (converted by
-    :mod:`rotorlanding.from_ross`). Not validated yet."""
+    :func:`rotorlanding.from_ross.rotor_table` with the options ``ross``). Not validated yet."""
     path = Path(path)
     try:
         data = load_toml(path)
@@ -417,12 +417,14 @@ def read_rotor_table(path) -> dict:
         from .from_ross import is_ross_layout, rotor_table
 
         if is_ross_layout(data):
-            return rotor_table(data, source=str(path))
+            return rotor_table(data, source=str(path), **ross)
         raise InputError("rotor", None, "missing required table [rotor] (nor is it a rotor saved by ROSS)",
                          file=str(path))
     return data["rotor"]
 
 
-def load_rotor(path) -> Rotor:
-    """Read and validate the rotor of a rotor, scenario or ROSS file (:func:`read_rotor_table`)."""
-    return rotor_from_dict({"rotor": read_rotor_table(path)}, source=str(path))
+def load_rotor(path, bearings_at_rpm: float | None = None) -> Rotor:
+    """Read and validate the rotor of a rotor, scenario or ROSS file (:func:`read_rotor_table`);
+    ``bearings_at_rpm`` [rpm]: a ROSS file's frequency-dependent bearing coefficients at that speed."""
+    ross = {} if bearings_at_rpm is None else {"bearings_at_rpm": bearings_at_rpm}
+    return rotor_from_dict({"rotor": read_rotor_table(path, **ross)}, source=str(path))

@@ -257,3 +257,15 @@ def test_coaxial_layers_add_their_mass_and_survive_to_toml(tmp_path):
     bad = dict(sec, layers=[{"outer_diameter": 0.12, "inner_diameter": 0.05, "material": "brass"}])
     with pytest.raises(rl.InputError, match=r"rotor\.sections\[0\]\.layers\[0\]\.material = 'brass'"):
         rl.Rotor(materials={"steel": steel}, sections=[bad])
+
+
+def test_cli_modes_takes_ross_bearings_at_each_speed(capsys, tmp_path):
+    ref = REF["frequency_dependent"]
+    png = tmp_path / "campbell.png"
+    args = ["modes", str(FIX / ref["file"]), "--speeds-rpm", "0,5000,10000", "--json", "--n-modes", "10", "--plot", str(png)]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["model"].endswith("ROSS bearing coefficients at each speed")
+    ours = np.array([[m["frequency_hz"] for m in per_speed] for per_speed in out["modes"]])
+    np.testing.assert_allclose(ours, ref["frequencies_hz"], rtol=RTOL)
+    assert png.stat().st_size > 10_000
