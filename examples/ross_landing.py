@@ -8,7 +8,8 @@ impellers, an overhung coupling hub, two bearings with cross-coupled coefficient
 without ROSS; with ROSS installed (``pip install '.[ross]'``) a live rotor converts the same way:
 ``rl.Rotor.from_ross(ross_rotor, catcher_nodes=...)``. The ROSS bearings (the AMBs) become linear
 supports for the Campbell diagram; the landing drops the rotor from them onto the rig's catcher
-bearings (scenarios/landing_7000rpm.toml), placed at the shaft ends (ROSS nodes 0 and 10).
+bearings (scenarios/landing_7000rpm.toml), placed at the shaft ends (ROSS nodes 0 and 10). The
+command line reads the same file: ``rotorlanding modes examples/data/compressor_ross.toml``.
 
 Units: SI (m, kg, N, s); speeds in rpm, frequencies in Hz as named.
 """

@@ -269,3 +269,16 @@ def test_cli_modes_takes_ross_bearings_at_each_speed(capsys, tmp_path):
     ours = np.array([[m["frequency_hz"] for m in per_speed] for per_speed in out["modes"]])
     np.testing.assert_allclose(ours, ref["frequencies_hz"], rtol=RTOL)
     assert png.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("kw, words", [
+    ({"catchers": {"DE": 2.0}}, "catchers.DE = 2.0: must be a position on the rotor, 0 <= x <= 1.5 m"),
+    ({"catcher_nodes": {"DE": 9}}, "catcher_nodes.DE.node = 9: must be a shaft node, 0..6"),
+    ({"catcher_nodes": {"DE": 0.5}}, "must be a ROSS node number (int)"),
+    ({"catchers": {"Bearing_0": 0.2}}, "station name already used by a ROSS bearing"),
+    ({"bearings_at_rpm": float("nan")}, "must be a spin speed >= 0 rpm"),
+])
+def test_bad_catcher_stations_are_named(kw, words):
+    with pytest.raises(rl.InputError) as err:
+        rl.Rotor.from_ross(FIX / "rotor_example.toml", **kw)
+    assert words in str(err.value) and str(err.value).startswith(str(FIX / "rotor_example.toml"))
