@@ -269,3 +269,20 @@ def test_bad_catcher_stations_are_named(kw, words):
     with pytest.raises(rl.InputError) as err:
         rl.Rotor.from_ross(FIX / "rotor_example.toml", **kw)
     assert words in str(err.value) and str(err.value).startswith(str(FIX / "rotor_example.toml"))
+
+
+@pytest.mark.parametrize("name", ["compressor_like", "compressor_example"])
+def test_matrices_equal_ross_lateral_blocks(name):
+    # ROSS's own assembled matrices (free rotor: its bearings' K taken out), lateral DOFs x, y,
+    # alpha, beta of each node, against ours (y, z, alpha, beta: the same conventions, no sign flip)
+    rs = pytest.importorskip("ross")
+    path = FIX / f"{name}.toml"
+    theirs = rs.Rotor.load(path)
+    ours = rl.Rotor.from_ross(path, bearings_at_rpm=0.0).fe()
+    idx = np.array([[6 * k + j for j in (0, 1, 3, 4)] for k in range(len(ours.nodes))]).ravel()
+    k_free = theirs.K(0)
+    for b in theirs.bearing_elements:
+        dofs = list(b.dof_global_index.values())
+        k_free[np.ix_(dofs, dofs)] -= b.K(0)
+    for a, b in ((theirs.M(0), ours.M), (k_free, ours.K), (theirs.G(), ours.G)):
+        assert np.abs(a[np.ix_(idx, idx)] - b).max() < 1e-13 * np.abs(b).max()
