@@ -20,7 +20,7 @@ everything downstream (validation, ``modes``, landings) is the one rotor path. W
   ``modes``: ROSS x (horizontal), y (vertical), z (axial) are our y, z, x, so ``kxx, kyy, kxy, kyx``
   -> ``kyy, kzz, kyz, kzy`` (damping alike); the axial ``kzz``/``czz`` act on no lateral DOF;
 - the element Rayleigh factors ``alpha``, ``beta`` (equal on every shaft element) -> ``[rotor.damping]``
-  (ours acts on the disks' mass too: the damped frequencies differ where alpha > 0);
+  with ``shaft_only = true`` (on the shaft elements, not the disks, as ROSS);
 - the catcher-bearing stations, chosen by the user (positions [m] or ROSS node numbers), become
   stations and the Craig-Bampton boundary of ``[rotor.reduction]``.
 
@@ -383,7 +383,7 @@ def rotor_table(data: dict, *, source: str | None = None, catchers: dict | None 
     if boundary:
         table["reduction"] = {"boundary_stations": boundary, "modes": reduction_modes}
     if alpha or beta:
-        table["damping"] = {"mass_proportional": alpha, "stiffness_proportional": beta}
+        table["damping"] = {"mass_proportional": alpha, "stiffness_proportional": beta, "shaft_only": True}
     return table
 
 

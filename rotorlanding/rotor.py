@@ -157,6 +157,9 @@ class Rotor:
     stiffness_proportional_damping: float = 0.0  # s (Rayleigh beta)
     max_speed_rpm: float = 10000.0
     source: str | None = field(default=None, compare=False)
+    # Rayleigh damping on the shaft elements only, without the disks' mass (ROSS's convention:
+    # its element alpha/beta; docs/ross.md); False: alpha M + beta K of the whole free rotor
+    damping_shaft_only: bool = False
 
     @property
     def length(self) -> float:
@@ -392,11 +395,12 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     damping = r.table("damping", {})
     alpha = damping.number("mass_proportional", 0.0, nonnegative=True)
     beta = damping.number("stiffness_proportional", 0.0, nonnegative=True)
+    shaft_only = damping.boolean("shaft_only", False)
     damping.finish()
     max_speed = r.number("max_speed_rpm", 10000.0, positive=True)
     r.finish()
     rotor = Rotor(name, tuple(sections), tuple(disks), stations, tuple(supports), reduction,
-                  alpha, beta, max_speed, source)
+                  alpha, beta, max_speed, source, damping_shaft_only=shaft_only)
     burst, part = rotor.burst_speed_rpm()
     if max_speed > burst:
         raise InputError("rotor.max_speed_rpm", max_speed, f"must be <= {burst:.4g} rpm: above it {part} bursts even if "

@@ -243,6 +243,8 @@ def assemble(rotor: Rotor) -> RotorFE:
             mass += mat.density * a_mean * L
             ip_total += mat.density * 2.0 * i_mean * L
 
+    m_shaft = M.copy() if rotor.damping_shaft_only else None
+
     def node_at(x: float) -> int:
         return int(np.argmin(np.abs(nodes - x)))
 
@@ -260,7 +262,10 @@ def assemble(rotor: Rotor) -> RotorFE:
         mass += d.mass
         ip_total += d.polar_inertia
 
-    C = rotor.mass_proportional_damping * M + rotor.stiffness_proportional_damping * K
+    # Rayleigh damping of the whole free rotor, or (damping.shaft_only, ROSS's element damping) of
+    # the shaft elements without the disks' mass
+    C = rotor.mass_proportional_damping * (m_shaft if rotor.damping_shaft_only else M) + \
+        rotor.stiffness_proportional_damping * K
     stations = {name: node_at(x) for name, x in rotor.stations.items()}
     return RotorFE(rotor, nodes, M, K, G, C, stations, disk_nodes, mass, ip_total)
 
