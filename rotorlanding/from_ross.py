@@ -61,8 +61,9 @@ UNSUPPORTED = {
     "TiltingPad": "a fluid-film bearing (load- and speed-dependent coefficients)",
     "THDCylindrical": "a fluid-film bearing (load- and speed-dependent coefficients)",
     "SqueezeFilmDamper": "a squeeze-film damper (amplitude-dependent coefficients)",
-    "MagneticBearingElement": "an active magnetic bearing (controller-dependent, frequency-dependent force); "
-                              "give its equivalent stiffness and damping as a BearingElement in ROSS",
+    "MagneticBearingElement": "an active magnetic bearing saved by its electromagnet and controller "
+                              "parameters only (ROSS 2.3 saves one as a BearingElement with its coefficients "
+                              "over frequency, which converts with bearings_at_rpm)",
     "CouplingElement": "a coupling (its lumped masses and stiffnesses join two shaft lines)",
     "GearElement": "a gear (couples shaft lines and torsion)",
     "Probe": "a probe (not an element)",
