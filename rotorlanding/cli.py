@@ -166,7 +166,7 @@ def cmd_run(args) -> int:
 
 
 def cmd_coastdown(args) -> int:
-    from .coastdown import format_summary, load_coastdown, run_coastdown
+    from .coastdown_run import format_summary, load_coastdown, run_coastdown
 
     overrides = list(args.set or [])
     if args.t_end is not None:
@@ -212,7 +212,7 @@ def cmd_animate(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .sweep import run_sweep
+    from .sweep_run import run_sweep
 
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
@@ -234,7 +234,7 @@ def cmd_sweep(args) -> int:
 def cmd_diagnose(args) -> int:
     from pathlib import Path
 
-    from .diagnose import diagnose, measured_for_diagnosis, write_report
+    from .diagnose_run import diagnose, measured_for_diagnosis, write_report
 
     for opt, v in (("--workers", args.workers), ("--maxiter", args.maxiter), ("--max-effects", args.max_effects)):
         if v < 1:

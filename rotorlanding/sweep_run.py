@@ -1,5 +1,9 @@
 """Parameter sweeps of landing scenarios: ``rotorlanding sweep SWEEP.toml``.
 
+The machinery behind ``rotorlanding sweep`` and the Python API's ``rotorlanding.sweep(...)``
+(:mod:`rotorlanding.api_studies`, which returns a ``Sweep``); the module is named ``sweep_run`` so
+that the package attribute ``rotorlanding.sweep`` is the function.
+
 A sweep file names a base scenario and the keys to vary::
 
     scenario = "paper/forward_whirl_landing.toml"   # relative to the sweep file

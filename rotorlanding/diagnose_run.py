@@ -1,5 +1,9 @@
 """Model-gap diagnosis: which missing effect explains where simulation and measurement disagree.
 
+The machinery behind ``rotorlanding diagnose`` and the Python API's ``rotorlanding.diagnose(...)``
+(:mod:`rotorlanding.api_studies`, which returns a ``Diagnosis``); the module is named ``diagnose_run`` so
+that the package attribute ``rotorlanding.diagnose`` is the function.
+
 ``diagnose(measured, scenario_path, ...)``:
   a. simulate the model as it is at every operating point (one point for a record; one per
      ``[points.NAME]`` table of a feature table, each with its scenario overrides), extract the
