@@ -222,7 +222,10 @@ def coastdown(scenario, out_dir, *, resume: bool = False, overwrite: bool = Fals
             ``{"coastdown.stop_speed_rpm": 500.0}``.
 
     Returns a :class:`Coastdown`: ``.summary`` (the summary.json, equal to the command's except
-    the wall-clock and memory figures), ``.t`` [s], series by name with units, figures.
+    the wall-clock and memory figures: ``time_to_stop_s`` [s], final speeds [rpm], energy per
+    mechanism [J], peak contact force per bearing [N]), ``.t`` [s], series by name with units
+    (displacements [m], forces [N], speeds [rpm], energies [J]), ``.plot_speeds()`` and the other
+    figures.
     Bad input raises :class:`InputError` before anything is written.
     """
     from .coastdown_run import FIELDS, coastdown_from_dict, load_coastdown, run_coastdown
@@ -383,8 +386,10 @@ def sweep(sweep_or_scenario, out_dir, *, grid: dict | None = None, ranges: dict 
         workers: local worker processes (>= 1); scheduler: a Dask scheduler address instead.
         Values in their keys' units (SI; ``operating.speed_rpm`` in rpm).
 
-    Returns a :class:`Sweep` (``.table``: the rows of sweep.csv; ``.whirl_map()``). A failing
-    case is a row with ``status`` "failed" and its error; bad input raises :class:`InputError`.
+    Returns a :class:`Sweep`: ``.table``, the rows of sweep.csv (per case the swept values, whirl
+    class and ``whirl_frequency_hz`` [Hz], onset [s], per-bearing peak force [N] and vertical range
+    [m], final speed [rpm], energy dissipated [J]); ``.whirl_map()``. A failing case is a row with
+    ``status`` "failed" and its error; bad input raises :class:`InputError`.
     """
     from .safeio import check_out_dir
     from .sweep_run import run_sweep
