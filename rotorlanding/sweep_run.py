@@ -416,6 +416,10 @@ def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
                     txt += f"\n{f / spin:.2f} x spin"
             ax.text(i, j, txt, ha="center", va="center", fontsize=9,
                     color="w" if _cls(r) == "failed" else "k")
+    for i in range(1, len(xs)):  # white rules between the cells of neighbouring cases of one class
+        ax.axvline(i - 0.5, color="w", lw=2)
+    for j in range(1, len(ys)):
+        ax.axhline(j - 0.5, color="w", lw=2)
     ax.set_xticks(range(len(xs)), [f"{x:g}" for x in xs])
     ax.set_yticks(range(len(ys)), [f"{y:g}" for y in ys] if ky else [""])
     ax.set_xlabel(key_label(kx))
