@@ -405,7 +405,7 @@ def sweep(sweep_or_scenario, out_dir, *, grid: dict | None = None, ranges: dict 
         sweep_file = Path(sweep_or_scenario)
         if not sweep_file.is_file():
             raise InputError("sweep file", str(sweep_file), "file not found")
-        out = Path(out_dir)
+        out = check_out_dir(out_dir, "out_dir")
     else:
         out = check_out_dir(out_dir, "out_dir")
         sweep_file = _sweep_file_from_python(sweep_or_scenario, out, grid, ranges, fixed, samples, seed)

@@ -212,6 +212,10 @@ def test_sweep_refuses_bad_input(tmp_path):
     with pytest.raises(rl.InputError) as exc:  # an unknown key: the sweep file's own validation
         rl.sweep(LANDING, tmp_path / "k", grid={"contact.mu_radial": [0.1]})
     assert "contact.mu_radial" in str(exc.value)
+    (tmp_path / "a_file").write_text("")
+    with pytest.raises(rl.InputError) as exc:  # an output folder that is a file: named, nothing run
+        rl.sweep(f, tmp_path / "a_file")
+    assert exc.value.field == "out_dir"
     with pytest.raises(rl.InputError, match="not a sweep"):
         rl.Sweep.load(tmp_path)
 
