@@ -86,6 +86,9 @@ ax.set_ylabel(f"energy dissipated [{lost[0].unit}]")
 ax.set_title("where the kinetic energy went", fontsize=10)
 ax.legend(fontsize=8)
 for ax in axes.ravel():
+    if t[-1] > 5.0:  # a long run: linear over the landing's first second, logarithmic after
+        ax.set_xscale("symlog", linthresh=1.0, linscale=1.0)
+    ax.set_xlim(0.0, t[-1])
     ax.set_xlabel("time after the drop [s]")
     ax.grid(alpha=0.3)
 fig.suptitle(f"{s['scenario']}: {s['t_reached_s']:.2f} s simulated, {s['stop_reason']}", fontsize=11)

@@ -20,6 +20,7 @@ import copy
 import csv
 import json
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -61,7 +62,6 @@ def _coastdown_file(path: Path) -> dict:
                 raise InputError("results file", str(path), f"is not a coastdown result (kind "
                                  f"{h5.attrs.get('kind', 'landing')!r}); a landing is read by Landing.load")
             return {"t": h5["time_s"][()],
-                    "series": {k: h5["series"][k][()] for k in h5["series"]},
                     "units": {k: str(h5["series"][k].attrs["unit"]) for k in h5["series"]},
                     "summary": json.loads(h5["summary_json"][()]) if "summary_json" in h5 else {},
                     "chunks": {k: h5["coastdown/chunks"][k][()] for k in h5["coastdown/chunks"]}
@@ -70,6 +70,29 @@ def _coastdown_file(path: Path) -> dict:
                     "scenario_name": str(h5.attrs.get("scenario_name", ""))}
     except (OSError, KeyError, ValueError) as exc:
         raise InputError("results file", str(path), f"not a rotorlanding results.h5 ({exc})") from None
+
+
+class _FileSeries(Mapping):
+    """The series of a coast-down results.h5, each read from the file when asked for: a run to
+    rest stores millions of samples of ~70 series (about 1 GB for the rig's hour), which a
+    results object must not hold at once (the coast-down itself keeps memory bounded)."""
+
+    def __init__(self, path: Path, names):
+        self.path, self.names = path, list(names)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        import h5py
+
+        if name not in self.names:
+            raise KeyError(name)
+        with h5py.File(self.path, "r") as h5:
+            return h5["series"][name][()]
+
+    def __iter__(self):
+        return iter(self.names)
+
+    def __len__(self) -> int:
+        return len(self.names)
 
 
 def _folder_summary(path: Path, stored: dict) -> dict:
@@ -103,7 +126,8 @@ class Coastdown:
         clearances: {bearing: radial clearance [m]}
         path: the results.h5; complete: False when interrupted (``resume=True`` continues) or
             the solver failed
-    Series by name: ``cd["rotor_speed_rpm"]`` or ``cd.series(name)`` (a :class:`Series`).
+    Series by name: ``cd["rotor_speed_rpm"]`` or ``cd.series(name)`` (a :class:`Series`), read
+    from results.h5 when asked for (a run to rest holds too many samples to load them all).
     """
 
     def __init__(self, path, summary: dict | None = None):
@@ -112,8 +136,8 @@ class Coastdown:
         self.path = Path(path)
         data = _coastdown_file(self.path)
         self.t = data["t"]
-        self._series = data["series"]
         self.units = data["units"]
+        self._series = _FileSeries(self.path, self.units)
         self.chunks = data["chunks"]
         self.summary = summary if summary is not None else _folder_summary(self.path, data["summary"])
         raw = data["scenario"]
