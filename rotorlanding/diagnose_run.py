@@ -507,7 +507,12 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
             raise InputError(f"{opt('set')} {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
     if t_end is not None:
         sets.append(f"operating.t_end={t_end!r}")
-    clearance, m, meas = measured_for_diagnosis(scenario_path, measured_path, sets, time_offset_s)
+    try:
+        clearance, m, meas = measured_for_diagnosis(scenario_path, measured_path, sets, time_offset_s)
+    except InputError as err:  # the readers name the file option as the command line spells it
+        if cli_names or not err.field.startswith("--"):
+            raise
+        raise InputError(err.field[2:].replace("-", "_"), err.value, err.allowed, file=err.file) from None
     cands = list(candidates) if candidates else None
     for c in cands or []:
         if c not in CATALOGUE:

@@ -282,7 +282,7 @@ def test_diagnose_refuses_bad_input_before_simulating(one_point_table, tmp_path,
         assert exc.value.field == field, kw
     with pytest.raises(rl.InputError) as exc:
         rl.diagnose(tmp_path / "missing.csv", PAPER_MODEL, tmp_path / "o")
-    assert "missing.csv" in str(exc.value)
+    assert exc.value.field == "measured" and "missing.csv" in str(exc.value)  # the keyword, not --measured
     with pytest.raises(rl.InputError, match="not a diagnosis"):
         rl.Diagnosis.load(tmp_path)
 
