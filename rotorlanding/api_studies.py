@@ -363,9 +363,14 @@ def _sweep_file_from_python(base, out: Path, grid, ranges, fixed, samples, seed)
     if not isinstance(table, dict) or not table:
         raise InputError("grid" if grid is not None else "ranges", table,
                          "must be a non-empty dict of dotted keys, e.g. {'contact.mu_rad': [0.1, 0.3]}")
+    if grid is not None and (samples is not None or seed is not None):
+        raise InputError("samples" if samples is not None else "seed", samples if samples is not None else seed,
+                         "goes with ranges= (Monte Carlo); a grid runs every combination")
+    texts = {}  # file name -> text, written only after the check below
     if isinstance(base, Scenario):
         base_path = out / "base_scenario.toml"
-        base.to_toml(base_path)
+        with tempfile.TemporaryDirectory() as tmp:
+            texts[base_path.name] = base.to_toml(Path(tmp) / base_path.name).read_text()
     elif isinstance(base, (str, Path)):
         base_path = Path(base).resolve()
         if not base_path.is_file():
@@ -385,8 +390,16 @@ def _sweep_file_from_python(base, out: Path, grid, ranges, fixed, samples, seed)
     else:
         doc["ranges"] = dict(ranges)
     f = out / "sweep_input.toml"
-    atomic_write_text(f, "# sweep written by rotorlanding.sweep (run again: rotorlanding sweep THIS_FILE)\n"
-                      + _toml_dump(doc))
+    texts[f.name] = "# sweep written by rotorlanding.sweep (run again: rotorlanding sweep THIS_FILE)\n" + _toml_dump(doc)
+    # finished cases in out_dir are not run again (the command's resume): they must be cases of
+    # this sweep, or a notebook that changed its scenario would read the old results back
+    for name, text in texts.items():
+        old = out / name
+        if old.is_file() and old.read_text() != text:
+            raise InputError("out_dir", str(out), f"holds a sweep of another scenario or grid ({name} differs); "
+                             "use a new folder, or delete this one to run again")
+    for name, text in texts.items():
+        atomic_write_text(out / name, text)
     return f
 
 

@@ -198,6 +198,18 @@ def test_sweep_from_python_equals_the_sweep_file(tmp_path):
     # the written sweep file runs again from the command line (cases found finished: skipped)
     assert main(["sweep", str(tmp_path / "py" / "sweep_input.toml"), "--out", str(tmp_path / "py")]) == 0
     assert sw.keys == list(GRID)
+    # the same sweep again: the finished cases are read back from their summaries, not run
+    # (wall_s then comes from the summary's performance, not the worker's clock)
+    again = rl.sweep(rl.Scenario.load(LANDING), tmp_path / "py", grid=GRID, fixed=FIXED, workers=1)
+    assert [{k: v for k, v in r.items() if k != "wall_s"} for r in again.table] == \
+        [{k: v for k, v in r.items() if k != "wall_s"} for r in sw.table]
+    # another scenario into the same folder would read the old cases back as its own: refused
+    with pytest.raises(rl.InputError) as exc:
+        rl.sweep(rl.Scenario.load(LANDING, set={"contact.mu_rad": 0.2}), tmp_path / "py", grid=GRID, fixed=FIXED)
+    assert exc.value.field == "out_dir" and "base_scenario.toml differs" in str(exc.value)
+    with pytest.raises(rl.InputError) as exc:
+        rl.sweep(LANDING, tmp_path / "py", grid=GRID, fixed=FIXED, seed=3)
+    assert exc.value.field == "seed"
 
 
 def test_sweep_refuses_bad_input(tmp_path):
