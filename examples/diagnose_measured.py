@@ -20,7 +20,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
-import numpy as np
 
 import rotorlanding as rl
 from rotorlanding.mechanisms import rotor_force  # force of a bearing on the rotor (race contact + face rub)
