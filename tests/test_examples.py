@@ -14,7 +14,9 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 CASES = {
     "build_rotor_and_land.py": ["campbell.png", "orbits.png", "displacements.png", "results.h5", "rotor.toml"],
     "paper_forward_whirl.py": ["forward_whirl.png", "spectrum.png", "results.h5"],
-    "whirl_map.py": ["whirl_map.png"],
+    "whirl_map.py": ["whirl_map.png", "orbits.png", "sweep.csv"],
+    "coastdown.py": ["coastdown_overview.png", "speeds.png", "coastdown.png", "results.h5", "summary.json"],
+    "diagnose_measured.py": ["measured_vs_model.png", "features.png", "report.md", "report.json"],
 }
 
 
@@ -44,6 +46,14 @@ def test_example_short(script, tmp_path):
     print(f"{script} --short: {cpu:.1f} s CPU, {wall:.1f} s wall")
     if script == "paper_forward_whirl.py":
         assert "whirl at the DE bearing: forward" in stdout  # the paper's result, from the API
+    if script == "diagnose_measured.py":
+        # the paper's story at two speeds: axial rub is what the model without it lacks
+        assert "named effect: axial_rub" in stdout, stdout
+    if script == "whirl_map.py":  # every case of the grid is a row of the table the Sweep read back
+        import rotorlanding as rl
+
+        assert [r["status"] for r in rl.Sweep.load(tmp_path).table] == ["ok"] * 4
+        assert "contact.mu_rad" in (tmp_path / "sweep_input.toml").read_text()  # rerunnable from the CLI
 
 
 @pytest.mark.slow
