@@ -44,11 +44,11 @@ MU_RAD = [0.1, 0.15, 0.2, 0.3]
 def child(sweep_file: str, out: str, workers: int) -> None:
     """One sweep in this (fresh) process; prints its timings as JSON on the last line."""
     t0 = time.perf_counter()
-    from rotorlanding import sweep
+    from rotorlanding import sweep_run
 
     t1 = time.perf_counter()
     phase = {}
-    run_local = sweep._run_local
+    run_local = sweep_run._run_local
 
     def timed_run_local(*args, **kw):  # the parallel phase: first case submitted to last result
         w = time.perf_counter()
@@ -57,8 +57,8 @@ def child(sweep_file: str, out: str, workers: int) -> None:
         finally:
             phase["cases_s"] = time.perf_counter() - w
 
-    sweep._run_local = timed_run_local
-    rows = sweep.run_sweep(sweep_file, out, workers=workers)
+    sweep_run._run_local = timed_run_local
+    rows = sweep_run.run_sweep(sweep_file, out, workers=workers)
     t2 = time.perf_counter()
     assert len(rows) == 16 and all(r["status"] == "ok" for r in rows), rows
     ru_self, ru_kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -120,7 +120,7 @@ def main(argv=None):
             ratio = (f"{p['ratio_sweep']:11.2f} {p['ratio_cases']:11.2f} {p['ratio_process']:13.2f}" if w == 2 else "")
             print(f"{k:>4} {w:>7} {r['load_1min']:6.2f} {r['sweep_s']:8.2f} {r['cases_s']:8.2f} {r['process_s']:9.2f} "
                   f"{r['case_mean_s']:11.3f} {r['cpu_parent_s']:12.2f} {r['cpu_workers_s']:13.2f} {ratio}")
-    print("sweep s: run_sweep call (after `import rotorlanding.sweep`); cases s: its parallel phase, first case "
+    print("sweep s: run_sweep call (after `import rotorlanding.sweep_run`); cases s: its parallel phase, first case "
           "submitted to last result (after the parent's imports and kernel warm-up); process s: the whole python "
           "process; case mean s: one case in its worker; cpu: user+sys of the parent and of its workers")
     print("identical summaries with 1 and 2 workers: yes")

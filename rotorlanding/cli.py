@@ -179,7 +179,7 @@ def cmd_run(args) -> int:
 
 
 def cmd_coastdown(args) -> int:
-    from .coastdown import format_summary, load_coastdown, run_coastdown
+    from .coastdown_run import format_summary, load_coastdown, run_coastdown
 
     overrides = list(args.set or [])
     if args.t_end is not None:
@@ -225,7 +225,7 @@ def cmd_animate(args) -> int:
 
 
 def cmd_sweep(args) -> int:
-    from .sweep import run_sweep
+    from .sweep_run import run_sweep
 
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
@@ -245,35 +245,13 @@ def cmd_sweep(args) -> int:
 
 
 def cmd_diagnose(args) -> int:
-    from pathlib import Path
+    from .diagnose_run import run_diagnose
 
-    from .diagnose import diagnose, measured_for_diagnosis, write_report
-
-    for opt, v in (("--workers", args.workers), ("--maxiter", args.maxiter), ("--max-effects", args.max_effects)):
-        if v < 1:
-            raise InputError(opt, v, "must be >= 1")
-    sets = list(args.set or [])
-    from .scenario import EFFECTS
-
-    for item in sets:
-        key = item.split("=", 1)[0].strip()
-        if key.startswith("effects.") and key[8:] not in EFFECTS:
-            raise InputError(f"--set {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
-    if args.t_end is not None:
-        sets.append(f"operating.t_end={args.t_end!r}")
-    clearance, m, meas = measured_for_diagnosis(args.scenario, args.measured, sets, args.time_offset_s)
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
-    from .effects import CATALOGUE
-
-    for c in cands or []:
-        if c not in CATALOGUE:
-            raise InputError("--candidates", c, f"unknown effect; allowed: {', '.join(CATALOGUE)}")
-    res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,
-                   workers=args.workers, maxiter=args.maxiter, base_overrides=sets)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "report.json").write_text(json.dumps(res, indent=2, default=float))
-    files = write_report(res, out, m if m.channels else None, args.scenario, clearance)
+    res, files = run_diagnose(args.scenario, args.measured, args.out, sets=args.set or [], t_end=args.t_end,
+                              candidates=cands, max_effects=args.max_effects, workers=args.workers,
+                              maxiter=args.maxiter, time_offset_s=args.time_offset_s)
+    out = args.out
     print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']} "
           f"({res['simulations']} simulations, {res['wall_s']:.0f} s)")
     for n in res["named_effects"]:

@@ -12,7 +12,7 @@ HDF5 layout::
     /series/NAME      derived time series; attr unit (SI, declared in mechanisms.series_units)
     /summary_json     the summary (JSON text)
 
-A coast-down (``rotorlanding coastdown``, :mod:`rotorlanding.coastdown`) writes the same datasets
+A coast-down (``rotorlanding coastdown``, :mod:`rotorlanding.coastdown_run`) writes the same datasets
 as resizable, appended chunk by chunk (decimated, irregular ``time_s``), plus attrs ``kind =
 "coastdown"``::
 
@@ -22,7 +22,7 @@ as resizable, appended chunk by chunk (decimated, irregular ``time_s``), plus at
     /coastdown/restart       q, v; attrs t_s, chunks, n_rows, rows_sha256, state_sha256, stop_reason, totals
 
 This module owns that layout and its crash-safe store (:func:`create_file`, :class:`Store`,
-:class:`Checkpoint`, :func:`verify_checkpoint`, :func:`repack`); :mod:`rotorlanding.coastdown`
+:class:`Checkpoint`, :func:`verify_checkpoint`, :func:`repack`); :mod:`rotorlanding.coastdown_run`
 runs the chunks and hands each commit a function that appends its rows.
 
 Crash safety: the commit protocol
@@ -49,7 +49,7 @@ A kill at any point leaves results.h5 at the previous or the new commit; it lose
 chunks since the last commit (~2 s of wall time) and the one being solved. The spare is treated as
 garbage by every new process (deleted, then copied afresh from results.h5), so a half-written
 file is never opened. Where hard links are impossible the next chunk copies the file instead.
-The end of the run (:func:`rotorlanding.coastdown.finish`, through :func:`repack`) writes a compacted copy with the summary and renames it.
+The end of the run (:func:`rotorlanding.coastdown_run.finish`, through :func:`repack`) writes a compacted copy with the summary and renames it.
 Readers may keep results.h5 open meanwhile: HDF5 locks files it has open, so if the previous
 commit (the next spare) is still held by a reader, the run takes a fresh copy instead of writing
 under it. Before each commit, space for it is reserved (``posix_fallocate``: about 1 MB plus
@@ -89,7 +89,7 @@ from .errors import InputError
 from .safeio import WriteError, copy_file, fault, fsync_dir, fsync_path, h5_guard, new_h5, tmp_name, unlink_quietly
 
 if TYPE_CHECKING:
-    from .coastdown import Coastdown
+    from .coastdown_run import Coastdown
     from .scenario import Scenario
 
 CUMULATIVE_PREFIXES = ("dissipated_", "input_")  # cumulative series: a chunk continues from the last row

@@ -93,7 +93,7 @@ def run_fork(out: Path, overrides=TINY, *, fault=None, kill_after=None) -> tuple
     if pid == 0:  # the child: never return into the caller (a test runner)
         code = 1
         try:
-            from rotorlanding.coastdown import load_coastdown, run_coastdown
+            from rotorlanding.coastdown_run import load_coastdown, run_coastdown
 
             os.environ.pop("ROTORLANDING_FAULT", None)
             if fault:
@@ -119,7 +119,7 @@ def run_fork(out: Path, overrides=TINY, *, fault=None, kill_after=None) -> tuple
 
 def resume_here(out: Path, overrides=TINY) -> tuple[int, str]:
     """``--resume`` in this process: (0, "") or (2, the one-line refusal)."""
-    from rotorlanding.coastdown import load_coastdown, run_coastdown
+    from rotorlanding.coastdown_run import load_coastdown, run_coastdown
     from rotorlanding.errors import InputError
 
     sc, cd = load_coastdown(SCEN, overrides)

@@ -370,17 +370,17 @@ def _no_solves(monkeypatch):
     import scipy.optimize
 
     import rotorlanding.calibrate
-    import rotorlanding.coastdown
-    import rotorlanding.diagnose
+    import rotorlanding.coastdown_run
+    import rotorlanding.diagnose_run
     import rotorlanding.run
-    import rotorlanding.sweep
+    import rotorlanding.sweep_run
     import rotorlanding.validate
 
     monkeypatch.setattr(rotorlanding.run, "run_scenario", _refuse)
-    monkeypatch.setattr(rotorlanding.coastdown, "run_coastdown", _refuse)
-    monkeypatch.setattr(rotorlanding.diagnose, "diagnose", _refuse)
-    monkeypatch.setattr(rotorlanding.sweep, "warm_up", _refuse)
-    monkeypatch.setattr(rotorlanding.sweep, "_run_local", _refuse)
+    monkeypatch.setattr(rotorlanding.coastdown_run, "run_coastdown", _refuse)
+    monkeypatch.setattr(rotorlanding.diagnose_run, "diagnose", _refuse)
+    monkeypatch.setattr(rotorlanding.sweep_run, "warm_up", _refuse)
+    monkeypatch.setattr(rotorlanding.sweep_run, "_run_local", _refuse)
     monkeypatch.setattr(rotorlanding.calibrate, "_run_all", _refuse)
     monkeypatch.setattr(rotorlanding.validate, "validate", _refuse)
     monkeypatch.setattr(scipy.optimize, "differential_evolution", _refuse)
@@ -602,14 +602,14 @@ def _h5_corpus(folder: Path) -> dict[str, Path]:
 
 _H5_RUNNER = r"""
 import contextlib, io, json, sys, traceback
-import rotorlanding.run, rotorlanding.diagnose
+import rotorlanding.run, rotorlanding.diagnose_run
 from rotorlanding.cli import main
 
 def refuse(*a, **k):
     raise AssertionError("a solve was reached: the bad input passed validation")
 
 rotorlanding.run.run_scenario = refuse
-rotorlanding.diagnose.diagnose = refuse
+rotorlanding.diagnose_run.diagnose = refuse
 out = []
 for argv in json.loads(sys.stdin.read()):
     err = io.StringIO()
@@ -665,10 +665,10 @@ def test_animate_options(args, field, tmp_path, capsys):
 # failure says how many failed
 
 def test_sweep_all_failed_exits_1_and_partial_counts(monkeypatch, tmp_path, capsys):
-    import rotorlanding.sweep
+    import rotorlanding.sweep_run
 
     rows = [{"case": 0, "status": "failed", "error": "x"}, {"case": 1, "status": "failed", "error": "y"}]
-    monkeypatch.setattr(rotorlanding.sweep, "run_sweep", lambda *a, **k: rows)
+    monkeypatch.setattr(rotorlanding.sweep_run, "run_sweep", lambda *a, **k: rows)
     assert main(["sweep", str(SWEEP), "--out", str(tmp_path)]) == 1
     assert "every one of the 2 cases failed" in capsys.readouterr().err
     rows[1] = {"case": 1, "status": "ok", "error": ""}
@@ -693,8 +693,8 @@ def test_every_shipped_input_still_loads():
     """The plausibility limits sit where physics ends: every scenario, rotor, sweep case,
     calibration space (load_space checks both ends of its ranges) and fit-mode range end shipped
     in scenarios/, and both ends of every parameter range diagnose searches, must load."""
-    from rotorlanding import calibrate, modefit, sweep
-    from rotorlanding.coastdown import load_coastdown
+    from rotorlanding import calibrate, modefit, sweep_run
+    from rotorlanding.coastdown_run import load_coastdown
     from rotorlanding.effects import CATALOGUE
     from rotorlanding.rotor import load_rotor, rotor_from_dict
     from rotorlanding.scenario import load_scenario
@@ -721,9 +721,9 @@ def test_every_shipped_input_still_loads():
                 rotor_from_dict(modefit.rotor_with(sp["rotor_data"], {k: v[end] for k, v in sp["ranges"].items()}))
             kinds["fit-modes space"] += 1
         elif "grid" in data or "mode" in data:
-            sw = sweep.load_sweep(f)
+            sw = sweep_run.load_sweep(f)
             for case in sw["cases"]:
-                load_scenario(sw["base"], sweep._overrides(sw["fixed"], case))
+                load_scenario(sw["base"], sweep_run._overrides(sw["fixed"], case))
             kinds["sweep"] += 1
         elif "ranges" in data:
             calibrate.load_space(f)

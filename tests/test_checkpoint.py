@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import fault_harness as fh
-from rotorlanding.coastdown import Interrupted, load_coastdown, read_restart, run_coastdown, verify_checkpoint
+from rotorlanding.coastdown_run import Interrupted, load_coastdown, read_restart, run_coastdown, verify_checkpoint
 from rotorlanding.errors import InputError
 from rotorlanding.landing import build_spec
 
@@ -197,7 +197,7 @@ def test_coastdown_bad_out_is_refused_before_work(tmp_path, where):
 NO_RESERVE = ("import resource, signal, sys\n"
               "signal.signal(signal.SIGXFSZ, signal.SIG_IGN)\n"
               "resource.setrlimit(resource.RLIMIT_FSIZE, ({n}, {n}))\n"
-              "import rotorlanding.coastdown as C, rotorlanding.results as R, rotorlanding.safeio as S\n"
+              "import rotorlanding.coastdown_run as C, rotorlanding.results as R, rotorlanding.safeio as S\n"
               "S.reserve = C.reserve = lambda *a, **k: None  # HDF5 itself meets the limit\n"
               "from rotorlanding.cli import main\n"
               "sys.exit(main(sys.argv[1:]))\n")

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from rotorlanding.cli import main
-from rotorlanding.coastdown import Interrupted, load_coastdown, read_restart, run_coastdown
+from rotorlanding.coastdown_run import Interrupted, load_coastdown, read_restart, run_coastdown
 from rotorlanding.errors import InputError
 from rotorlanding.results import read_results
 
@@ -216,7 +216,7 @@ def test_killed_process_resumes_to_the_same_state(tmp_path, uninterrupted):
     an open file, so the run's next `open for append` died with `unable to lock file` when the
     (slowed) poll held it (the run stopped after 1 chunk), and a kill inside the longer write
     window left a damaged file. The run now never opens results.h5 for writing (see the module
-    docstring of rotorlanding.coastdown); the deadline is generous for a loaded machine."""
+    docstring of rotorlanding.coastdown_run); the deadline is generous for a loaded machine."""
     full_dir, _, _ = uninterrupted
     out = tmp_path / "killed"
     args = [sys.executable, "-m", "rotorlanding", "coastdown", str(SCEN), "--out", str(out), "--quiet", "--no-plots",
@@ -252,7 +252,7 @@ def test_peak_memory_stays_bounded_over_a_long_run(tmp_path):
     buffer is the same as for a 1-chunk run."""
     code = (
         "import json, resource, sys\n"
-        "from rotorlanding.coastdown import load_coastdown, run_coastdown\n"
+        "from rotorlanding.coastdown_run import load_coastdown, run_coastdown\n"
         "infos = []\n"
         f"sc, cd = load_coastdown({str(SCEN)!r}, ['operating.t_end=20'])\n"
         f"s = run_coastdown(sc, cd, {str(tmp_path)!r}, progress=False, plots=False, on_chunk=infos.append)\n"

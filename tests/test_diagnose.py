@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rotorlanding.cli import main
-from rotorlanding.diagnose import _simulate_features, diagnose
+from rotorlanding.diagnose_run import _simulate_features, diagnose
 
 ROOT = Path(__file__).resolve().parents[1]
 C = 2e-4

@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rotorlanding import sweep
+from rotorlanding import sweep_run
 from rotorlanding.cli import main
-from rotorlanding.sweep import load_sweep
+from rotorlanding.sweep_run import load_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 BASE = ROOT / "scenarios" / "landing_7000rpm.toml"
@@ -99,7 +99,7 @@ def test_dask_task_error_recorded_as_failed_case(tmp_path):
     jobs = [(0, str(BASE), [], str(tmp_path), False), (1, str(BASE), [], str(tmp_path), False)]
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False) as cluster:
         rows = map_on_dask(_raise_for_case_1, jobs, cluster.scheduler_address,
-                           on_error=lambda job, err: sweep._failed_row(job[0], err, job[3]))
+                           on_error=lambda job, err: sweep_run._failed_row(job[0], err, job[3]))
     rows = sorted(rows, key=lambda r: r["case"])
     assert rows[0] == {"case": 0, "status": "ok"}
     assert rows[1]["status"] == "failed" and "RuntimeError: worker lost" in rows[1]["error"]
@@ -114,19 +114,19 @@ def _raise_for_case_1(job):
 
 def _crash_case_1(job):
     """Stand-in for run_case: case 1 kills its worker process (like a segfault in the solver)."""
-    sweep._marker(job).parent.mkdir(parents=True, exist_ok=True)
-    sweep._marker(job).write_text("")
+    sweep_run._marker(job).parent.mkdir(parents=True, exist_ok=True)
+    sweep_run._marker(job).write_text("")
     if job[0] == 1:
         os._exit(3)
     time.sleep(0.2)
-    sweep._marker(job).unlink()
+    sweep_run._marker(job).unlink()
     return {"case": job[0], "status": "ok", "error": ""}
 
 
 def test_worker_crash_is_recorded_and_the_others_complete(tmp_path, monkeypatch):
-    monkeypatch.setattr(sweep, "run_case", _crash_case_1)
+    monkeypatch.setattr(sweep_run, "run_case", _crash_case_1)
     jobs = [(i, str(BASE), [], str(tmp_path), False) for i in range(5)]
-    rows = sorted(sweep._run_local(jobs, 2), key=lambda r: r["case"])
+    rows = sorted(sweep_run._run_local(jobs, 2), key=lambda r: r["case"])
     assert [r["case"] for r in rows] == [0, 1, 2, 3, 4]
     assert [r["status"] for r in rows] == ["ok", "failed", "ok", "ok", "ok"]
     assert "worker process died" in rows[1]["error"]
@@ -154,7 +154,7 @@ def test_craig_bampton_cache_gives_the_same_numbers():
     from rotorlanding.reduction import craig_bampton
     from rotorlanding.scenario import load_scenario
 
-    cache = sweep._CraigBamptonCache(craig_bampton)
+    cache = sweep_run._CraigBamptonCache(craig_bampton)
     sc = load_scenario(BASE)
     fe = landing.assemble(sc.rotor)
     red = sc.rotor.reduction

@@ -1,5 +1,9 @@
 """Model-gap diagnosis: which missing effect explains where simulation and measurement disagree.
 
+The machinery behind ``rotorlanding diagnose`` and the Python API's ``rotorlanding.diagnose(...)``
+(:mod:`rotorlanding.api_studies`, which returns a ``Diagnosis``); the module is named ``diagnose_run`` so
+that the package attribute ``rotorlanding.diagnose`` is the function.
+
 ``diagnose(measured, scenario_path, ...)``:
   a. simulate the model as it is at every operating point (one point for a record; one per
      ``[points.NAME]`` table of a feature table, each with its scenario overrides), extract the
@@ -20,6 +24,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -34,6 +39,7 @@ from .features import extract_features, gap_points
 from .measured import Measurement
 from .mechanisms import rotor_force
 from .runner import Pool, reduction_cache
+from .safeio import atomic_write_text
 
 #: gaps below this are treated as noise: on clean data (the model against its own resampled,
 #: noisy output) the gap is 0.03-0.1, so a disagreement must exceed 3x that to be explained
@@ -466,8 +472,59 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
                      f"{_fmt(a.get('simulated'))} | {_fmt(r['scale'])} | {r['distance']:.3g} | "
                      f"{a.get('distance', float('nan')):.3g} |")
     lines += ["", f"![{fig_name[:-4]}]({fig_name})", ""]
-    (out / "report.md").write_text("\n".join(lines))
+    atomic_write_text(out / "report.md", "\n".join(lines))
     return ["report.md", fig_name]
 
 
-__all__ = ["Point", "diagnose", "write_report"]
+def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float | None = None, candidates=None,
+                 max_effects: int = 1, workers: int = 2, maxiter: int = 10, time_offset_s: float | None = None,
+                 cli_names: bool = True) -> tuple[dict, list[str]]:
+    """``rotorlanding diagnose`` without its printing: validate the options, read the measurement,
+    run :func:`diagnose`, write ``out_dir``/report.json, report.md and the figure; returns (the
+    report, the names of the files written besides report.json). The command line and the API's
+    ``rotorlanding.diagnose`` both call it, so their reports are the same.
+
+    ``sets``: ``KEY=VALUE`` items (``--set``); ``t_end`` [s] overrides ``operating.t_end``;
+    ``candidates``: effect names or None (every effect the model lacks, faults only on request);
+    ``time_offset_s`` [s]: the drop instant in the data's clock (None: detected). ``cli_names``:
+    errors name the options as the command line spells them (``--max-effects``), else as the API's
+    keywords (``max_effects``). Every bad input is one InputError before any simulation."""
+    from pathlib import Path
+
+    from .safeio import atomic_write_text, check_out_dir
+    from .scenario import EFFECTS
+
+    def opt(name: str) -> str:
+        return "--" + name.replace("_", "-") if cli_names else name
+
+    for name, v in (("workers", workers), ("maxiter", maxiter), ("max_effects", max_effects)):
+        if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+            raise InputError(opt(name), v, "must be an integer >= 1")
+    sets = list(sets or [])
+    for item in sets:
+        key = item.split("=", 1)[0].strip()
+        if key.startswith("effects.") and key[8:] not in EFFECTS:
+            raise InputError(f"{opt('set')} {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
+    if t_end is not None:
+        sets.append(f"operating.t_end={t_end!r}")
+    try:
+        clearance, m, meas = measured_for_diagnosis(scenario_path, measured_path, sets, time_offset_s)
+    except InputError as err:  # the readers name the file option as the command line spells it
+        if cli_names or not err.field.startswith("--"):
+            raise
+        raise InputError(err.field[2:].replace("-", "_"), err.value, err.allowed, file=err.file) from None
+    cands = list(candidates) if candidates else None
+    for c in cands or []:
+        if c not in CATALOGUE:
+            raise InputError(opt("candidates"), c, f"unknown effect; allowed: {', '.join(CATALOGUE)}")
+    out = check_out_dir(out_dir, opt("out") if cli_names else "out_dir")
+    res = diagnose(meas, scenario_path, clearance=clearance, candidates=cands, max_effects=max_effects,
+                   workers=workers, maxiter=maxiter, base_overrides=sets)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    atomic_write_text(out / "report.json", json.dumps(res, indent=2, default=float))
+    files = write_report(res, out, m if m.channels else None, scenario_path, clearance)
+    return res, files
+
+
+__all__ = ["Point", "diagnose", "run_diagnose", "write_report"]

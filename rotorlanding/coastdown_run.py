@@ -1,5 +1,9 @@
 """Coast-down to rest: a landing run for minutes of machine time, streamed to ``results.h5``.
 
+The machinery behind ``rotorlanding coastdown`` and the Python API's ``rotorlanding.coastdown(...)``
+(:mod:`rotorlanding.api_studies`, which returns a ``Coastdown``); the module is named ``coastdown_run`` so
+that the package attribute ``rotorlanding.coastdown`` is the function.
+
 The run is cut into *chunks* of fixed simulated length ``[coastdown] chunk_s``. Every chunk is a
 fresh Exudyn model (:func:`rotorlanding.exudyn_model.build_exudyn` with the chunk's start state)
 solved from the chunk's start time to its end time; its samples are post-processed

@@ -1,5 +1,9 @@
 """Parameter sweeps of landing scenarios: ``rotorlanding sweep SWEEP.toml``.
 
+The machinery behind ``rotorlanding sweep`` and the Python API's ``rotorlanding.sweep(...)``
+(:mod:`rotorlanding.api_studies`, which returns a ``Sweep``); the module is named ``sweep_run`` so
+that the package attribute ``rotorlanding.sweep`` is the function.
+
 A sweep file names a base scenario and the keys to vary::
 
     scenario = "paper/forward_whirl_landing.toml"   # relative to the sweep file
@@ -41,6 +45,7 @@ from __future__ import annotations
 
 import csv
 import functools
+import io
 import itertools
 import json
 import os
@@ -48,9 +53,12 @@ import time
 import traceback
 from pathlib import Path
 
+import numpy as np
+
 from .config import override_table, range_spec, sample_ranges, study_file, value_list
 from .errors import InputError
 from .runner import ReductionCache, executor, reduction_cache, worker_setup
+from .safeio import atomic_write_text
 from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
@@ -264,9 +272,9 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     sw = load_sweep(path)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "sweep.json").write_text(json.dumps({"sweep_file": str(path), "base": str(sw["base"]), "mode": sw["mode"],
-                                                "keys": sw["keys"], "fixed": sw["fixed"], "cases": sw["cases"]},
-                                               indent=2))
+    atomic_write_text(out / "sweep.json", json.dumps({"sweep_file": str(path), "base": str(sw["base"]), "mode": sw["mode"],
+                                                      "keys": sw["keys"], "fixed": sw["fixed"], "cases": sw["cases"]},
+                                                     indent=2))
     rows: dict[int, dict] = {}
     jobs = []
     for idx, case in enumerate(sw["cases"]):
@@ -306,12 +314,14 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     table = [rows[i] for i in sorted(rows)]
     for r in table:
         r.update({k: sw["cases"][r["case"]][k] for k in sw["keys"]})
-    with open(out / "sweep.csv", "w", newline="") as fh:
-        bearings = next((r["_bearings"] for r in table if r.get("_bearings")), ["DE", "NDE"])
-        w = csv.DictWriter(fh, fieldnames=["case"] + sw["keys"] + csv_fields(bearings)[1:], extrasaction="ignore")
-        w.writeheader()
-        for r in table:
-            w.writerow(r)
+    # the whole table is written under a temporary name and renamed: a kill leaves the old or the new one
+    fh = io.StringIO(newline="")
+    bearings = next((r["_bearings"] for r in table if r.get("_bearings")), ["DE", "NDE"])
+    w = csv.DictWriter(fh, fieldnames=["case"] + sw["keys"] + csv_fields(bearings)[1:], extrasaction="ignore")
+    w.writeheader()
+    for r in table:
+        w.writerow(r)
+    atomic_write_text(out / "sweep.csv", fh.getvalue())
     plot_whirl_map(table, sw["keys"], out / "whirl_map.png")
     return table
 
@@ -323,32 +333,119 @@ def _import_plotting():
     import matplotlib.pyplot  # noqa: F401
 
 
+#: the unit of a swept key, from its name (SI otherwise unnamed: the scenario file's fields are SI)
+_KEY_UNITS = (("_rpm", "rpm"), ("_hz", "Hz"), ("_s", "s"), ("_m", "m"), ("_n", "N"), ("_j", "J"), ("_w", "W"),
+              ("diameter", "m"), ("radius", "m"), ("clearance", "m"), ("length", "m"), ("thickness", "m"),
+              ("t_end", "s"), ("t_drop", "s"), ("mass", "kg"))
+_KEY_NAMES = {"operating.speed_rpm": "rotor speed at the drop", "contact.mu_rad": "radial friction coefficient mu_rad",
+              "contact.mu_ax": "axial friction coefficient mu_ax", "axial.f_thrust": "axial thrust"}
+_KEY_EXTRA = {"axial.f_thrust": "N", "contact.k_hertz": "N/m^e", "contact.mu_rad": "-", "contact.mu_ax": "-"}
+WHIRL_STYLE = {"forward": ("tab:red", "^"), "backward": ("tab:blue", "v"), "none": ("0.75", "o"),
+               "failed": ("k", "x")}
+
+
+def key_label(key: str) -> str:
+    """An axis label for a swept key with its unit: ``operating.speed_rpm`` -> "rotor speed at
+    the drop [rpm] (operating.speed_rpm)"."""
+    unit = _KEY_EXTRA.get(key) or next((u for suf, u in _KEY_UNITS if key.endswith(suf)), None)
+    name = _KEY_NAMES.get(key)
+    core = f"{name} [{unit}]" if name and unit else (name or (f"{key} [{unit}]" if unit else key))
+    return f"{core}\n({key})" if name else core
+
+
+def _cls(r: dict) -> str:
+    return (r.get("whirl_direction") or "failed") if r.get("status") == "ok" else "failed"
+
+
 def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
+    """The whirl map of a sweep (PNG). Two swept keys on a full grid: left, one cell per case
+    coloured by whirl class with the whirl frequency [Hz] (and its ratio to the spin frequency
+    when ``operating.speed_rpm`` is swept) written in it; right, the whirl frequency [Hz] against
+    the first key, one line per value of the second (the 1x spin-frequency line when the first
+    key is the speed). Otherwise a scatter of the cases over the first two keys."""
     _import_plotting()
     import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
 
-    fig, ax = plt.subplots(figsize=(7, 5))
     kx = keys[0]
     ky = keys[1] if len(keys) > 1 else None
-    style = {"forward": ("tab:red", "^"), "backward": ("tab:blue", "v"), "none": ("0.5", "o"),
-             "failed": ("k", "x")}
-    seen = set()
+    xs = sorted({r[kx] for r in rows})
+    ys = sorted({r[ky] for r in rows}) if ky else [0.0]
+    speed_key = next((k for k in (kx, ky) if k == "operating.speed_rpm"), None)
+    cell = {}
     for r in rows:
-        cls = r.get("whirl_direction") if r["status"] == "ok" else "failed"
-        cls = cls or "failed"
-        c, m = style.get(cls, ("k", "x"))
-        x = r[kx]
-        y = r[ky] if ky else 0.0
-        ax.plot(x, y, m, color=c, ms=10, label=None if cls in seen else cls)
-        seen.add(cls)
-        if r.get("whirl_frequency_hz"):
-            ax.annotate(f"{r['whirl_frequency_hz']:.0f} Hz", (x, y), textcoords="offset points", xytext=(6, 6),
-                        fontsize=8)
-    ax.set_xlabel(kx)
-    ax.set_ylabel(ky or "")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title("whirl class and frequency (DE, else the bearing that whirls)")
+        cell.setdefault((r[kx], r[ky] if ky else 0.0), r)
+    full_grid = len(keys) <= 2 and len(cell) == len(xs) * len(ys) == len(rows)
+    title = "whirl class and frequency (DE journal, else the bearing that whirls)"
+    if not full_grid:
+        fig, ax = plt.subplots(figsize=(7, 5))
+        seen = set()
+        for r in rows:
+            cls = _cls(r)
+            c, m = WHIRL_STYLE.get(cls, ("k", "x"))
+            x, y = r[kx], (r[ky] if ky else 0.0)
+            ax.plot(x, y, m, color=c, ms=10, mec="k", label=None if cls in seen else cls)
+            seen.add(cls)
+            if r.get("whirl_frequency_hz"):
+                ax.annotate(f"{r['whirl_frequency_hz']:.0f} Hz", (x, y), textcoords="offset points", xytext=(6, 6),
+                            fontsize=8)
+        ax.set_xlabel(key_label(kx))
+        ax.set_ylabel(key_label(ky) if ky else "")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title(title, fontsize=10)
+        fig.tight_layout()
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        return
+    classes = list(WHIRL_STYLE)
+    codes = np.array([[classes.index(_cls(cell[(x, y)])) for x in xs] for y in ys])
+    cmap = ListedColormap(["#e8867d", "#7fa7d9", "#d9d9d9", "#404040"])
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 5.2), gridspec_kw={"width_ratios": [1.15, 1]})
+    ax.imshow(codes, cmap=cmap, vmin=-0.5, vmax=len(classes) - 0.5, origin="lower", aspect="auto")
+    for j, y in enumerate(ys):
+        for i, x in enumerate(xs):
+            r = cell[(x, y)]
+            f = r.get("whirl_frequency_hz")
+            txt = {"none": "no whirl"}.get(_cls(r), _cls(r))
+            if f and _cls(r) in ("forward", "backward"):
+                txt = f"{f:.0f} Hz"
+                if speed_key:
+                    spin = (x if speed_key == kx else y) / 60.0
+                    txt += f"\n{f / spin:.2f} x spin"
+            ax.text(i, j, txt, ha="center", va="center", fontsize=9,
+                    color="w" if _cls(r) == "failed" else "k")
+    for i in range(1, len(xs)):  # white rules between the cells of neighbouring cases of one class
+        ax.axvline(i - 0.5, color="w", lw=2)
+    for j in range(1, len(ys)):
+        ax.axhline(j - 0.5, color="w", lw=2)
+    ax.set_xticks(range(len(xs)), [f"{x:g}" for x in xs])
+    ax.set_yticks(range(len(ys)), [f"{y:g}" for y in ys] if ky else [""])
+    ax.set_xlabel(key_label(kx))
+    ax.set_ylabel(key_label(ky) if ky else "")
+    present = sorted({int(c) for c in codes.ravel()})
+    ax.legend(handles=[Patch(color=cmap(k), label={"none": "no whirl", "failed": "failed"}.get(classes[k], f"{classes[k]} whirl")) for k in present],
+              fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.16), ncol=len(present), frameon=False)
+    ax.set_title(title, fontsize=10)
+    # the whirl frequency against the first key, one line per value of the second
+    for y, color in zip(ys, plt.cm.viridis(np.linspace(0.0, 0.85, len(ys)))):
+        fx = [(x, cell[(x, y)].get("whirl_frequency_hz")) for x in xs]
+        fx = [(x, f if f and _cls(cell[(x, y)]) in ("forward", "backward") else np.nan) for x, f in fx]
+        fx = [(x, -f if _cls(cell[(x, y)]) == "backward" else f) for x, f in fx]
+        ax2.plot([a for a, _ in fx], [b for _, b in fx], "o-", color=color,
+                 label=f"{ky} = {y:g}" if ky else None)
+    if kx == "operating.speed_rpm":
+        sx = np.linspace(0.0, max(xs) * 1.05, 50)
+        ax2.plot(sx, sx / 60.0, "k--", lw=0.8, label="1x spin frequency")
+        ax2.plot(sx, -sx / 60.0, "k:", lw=0.8, label="-1x")
+    ax2.axhline(0.0, color="0.5", lw=0.6)
+    ax2.set_xlabel(key_label(kx))
+    ax2.set_ylabel("whirl frequency [Hz] (negative: backward)")
+    ax2.grid(alpha=0.3)
+    if ky or kx == "operating.speed_rpm":
+        ax2.legend(fontsize=8)
+    ax2.set_title("whirl frequency (a missing point: no whirl there)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=120)
     plt.close(fig)
