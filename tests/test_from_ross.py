@@ -20,10 +20,10 @@ from rotorlanding.timoshenko import assemble
 
 FIX = Path(__file__).resolve().parent / "fixtures" / "ross"
 REF = json.loads((FIX / "ross_frequencies.json").read_text())
-#: measured (the last make_fixtures.py run): 1.1e-12 (rotor_example), 5.5e-13 (compressor_like,
-#: conical and hollow elements), 1.6e-12 (disks_bearings), 2.1e-12 (frequency-dependent bearings at
-#: each speed), 3.7e-11 (ROSS's compressor_example, coaxial layers with E = 6.9 kPa beside steel),
-#: 3.9e-11 (the AMB rotor's elastic modes): the formulations agree, so the bound is rounding (ROSS's
+#: measured (the last make_fixtures.py run): 1.9e-12 (rotor_example), 4.3e-13 (compressor_like,
+#: conical and hollow elements), 1.6e-12 (disks_bearings), 3.8e-12 (frequency-dependent bearings at
+#: each speed), 1.0e-11 (ROSS's compressor_example, coaxial layers with E = 6.9 kPa beside steel),
+#: 2.8e-11 (the AMB rotor's elastic modes): the formulations agree, so the bound is rounding (ROSS's
 #: own eigenvalues move by ~3e-12 between runs)
 RTOL = 1e-9
 
