@@ -4,6 +4,7 @@ Modules, one concept each:
 - ``errors``     : InputError, the one exception type for bad user input.
 - ``config``     : TOML loading with ``include`` and dotted ``--set`` overrides.
 - ``rotor``      : rotor description (dataclasses) read from TOML, with validation.
+- ``from_ross``  : rotors saved by ROSS (or live ``ross.Rotor`` objects) as rotorlanding rotors.
 - ``timoshenko`` : Timoshenko beam element and assembly of M, K, G, C of the free rotor.
 - ``reduction``  : Craig-Bampton reduction and its error report.
 - ``modal``      : damped eigenvalues, whirl labels, Campbell diagram.

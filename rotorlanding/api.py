@@ -25,7 +25,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import load_toml
 from .errors import InputError
 from .safeio import atomic_write_text
 from .rotor import rotor_from_dict
@@ -169,15 +168,34 @@ class Rotor:
 
     @classmethod
     def from_toml(cls, path) -> "Rotor":
-        """Read the ``[rotor]`` table of a rotor file or of a scenario file (``include`` resolved)."""
-        path = Path(path)
-        try:
-            data = load_toml(path)
-        except InputError as err:
-            raise err.with_file(str(path)) from None
-        if "rotor" not in data:
-            raise InputError("rotor", None, "missing required table [rotor]", file=str(path))
-        return cls.from_table(data["rotor"], source=str(path))
+        """Read the ``[rotor]`` table of a rotor file or of a scenario file (``include`` resolved),
+        or a rotor saved by ROSS (as :meth:`from_ross` without catcher stations)."""
+        from .rotor import read_rotor_table
+
+        return cls.from_table(read_rotor_table(path), source=str(Path(path)))
+
+    @classmethod
+    def from_ross(cls, source, *, catchers: dict | None = None, catcher_nodes: dict | None = None,
+                  reduction_modes: int = 8, name: str | None = None, max_speed_rpm: float | None = None,
+                  ignore=(), bearings_at_rpm: float | None = None) -> "Rotor":
+        """A rotor from ROSS: a file written by ``ross.Rotor.save`` (.toml or .json, read without
+        ROSS) or a live ``ross.Rotor`` (``pip install '.[ross]'``). Shaft elements (uniform,
+        hollow, conical), disks, point masses and constant-coefficient bearings (as ``supports``
+        for :meth:`modes`) convert; anything else raises a one-line :class:`InputError` naming
+        the element and why (``ignore=[tag or class]`` leaves elements out on purpose).
+
+        ``catchers``: {station name: x [m]} or ``catcher_nodes``: {station name: ROSS node}: the
+        catcher-bearing sleeves, which become stations and the Craig-Bampton boundary
+        (``reduction_modes`` fixed-interface modes) so that the rotor can land
+        (:meth:`Scenario.with_rotor`). ``max_speed_rpm`` [rpm] (default: the file's, else 10000).
+        ``bearings_at_rpm`` [rpm]: freeze frequency-dependent bearing coefficients at this spin
+        speed (as ROSS's ``run_modal`` at that speed). Mapping and limits: ``docs/ross.md``."""
+        from .from_ross import table_from_ross
+
+        table, src = table_from_ross(source, catchers=catchers, catcher_nodes=catcher_nodes,
+                                     reduction_modes=reduction_modes, name=name, max_speed_rpm=max_speed_rpm,
+                                     ignore=ignore, bearings_at_rpm=bearings_at_rpm)
+        return cls.from_table(table, source=src)
 
     def to_toml(self, path) -> Path:
         """Write the rotor as a rotor file (``[rotor]`` table) that :meth:`from_toml` and the

@@ -45,12 +45,12 @@ def _below_burst(rotor, speeds) -> None:
                          "made of the strongest steel", file=rotor.source)
 
 
-def _linear_model(path: str, model: str, free: bool, speeds=()):
+def _linear_model(path: str, model: str, free: bool, speeds=(), bearings_at_rpm=None):
     from .reduction import full_model, reduce_rotor
     from .rotor import load_rotor
     from .timoshenko import assemble
 
-    rotor = load_rotor(path)
+    rotor = load_rotor(path, bearings_at_rpm=bearings_at_rpm)
     _below_burst(rotor, speeds)
     fe = assemble(rotor)
     if model == "reduced":
@@ -76,13 +76,26 @@ def cmd_modes(args) -> int:
     speeds = _speeds(args.speeds_rpm)
     if args.n_modes < 1:
         raise InputError("--n-modes", args.n_modes, "must be >= 1")
-    rotor, system, label = _linear_model(args.file, args.model, args.free, speeds)
-    results = campbell(system, speeds, args.n_modes)
+    # a ROSS rotor's frequency-dependent bearings are taken at each spin speed, as ROSS's run_modal
+    from .from_ross import has_speed_dependent_bearings
+
+    per_speed = has_speed_dependent_bearings(args.file)
+    rotor, system, label = _linear_model(args.file, args.model, args.free, speeds,
+                                         bearings_at_rpm=speeds[0] if per_speed else None)
+    if per_speed:
+        label += ", ROSS bearing coefficients at each speed"
+
+    def modes_at(at_speeds):
+        if not per_speed:
+            return campbell(system, at_speeds, args.n_modes)
+        return [campbell(_linear_model(args.file, args.model, args.free, [s], bearings_at_rpm=s)[1], [s],
+                         args.n_modes)[0] for s in at_speeds]
+
+    results = modes_at(speeds)
     if args.plot:
         top = max(max(speeds), rotor.max_speed_rpm)
         dense = np.linspace(0.0, top, 41)
-        plot_campbell(campbell(system, dense, args.n_modes), args.plot,
-                      title=f"Campbell diagram: {rotor.name}\n{label}")
+        plot_campbell(modes_at(dense), args.plot, title=f"Campbell diagram: {rotor.name}\n{label}")
     if args.json:
         out = {"speeds_rpm": speeds, "model": label,
                "modes": [[m.to_dict() for m in r.modes] for r in results]}

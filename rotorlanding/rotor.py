@@ -60,14 +60,58 @@ class ShaftSection:
     inner_diameter: float  # m
     material: Material
     elements: int
+    # a conical (tapered) section: the diameters at its right end, linear in x in between (None:
+    # uniform, the left values); ROSS's conical shaft elements map onto it (docs/ross.md)
+    outer_diameter_right: float | None = None  # m
+    inner_diameter_right: float | None = None  # m
+    # coaxial layers on the same length (a sleeve, an impeller hub modelled as a tube): each a
+    # ShaftSection of its own material and diameters whose element matrices add to this section's
+    # (ROSS's shaft elements sharing a node); their length and elements are this section's
+    layers: tuple["ShaftSection", ...] = ()
+
+    @property
+    def parts(self) -> tuple["ShaftSection", ...]:
+        """This section and its coaxial layers."""
+        return (self,) + self.layers
+
+    @property
+    def tapered(self) -> bool:
+        return self.outer_diameter_right is not None or self.inner_diameter_right is not None
+
+    def diameters(self, xi: float) -> tuple[float, float]:
+        """(outer, inner) diameter [m] at xi = (x - x_left) / length, linear along the section."""
+        if not self.tapered:
+            return self.outer_diameter, self.inner_diameter
+        do_r = self.outer_diameter if self.outer_diameter_right is None else self.outer_diameter_right
+        di_r = self.inner_diameter if self.inner_diameter_right is None else self.inner_diameter_right
+        return (self.outer_diameter + (do_r - self.outer_diameter) * xi,
+                self.inner_diameter + (di_r - self.inner_diameter) * xi)
+
+    @property
+    def max_outer_diameter(self) -> float:
+        """m: the largest outer diameter of the section and its layers."""
+        return max(max(p.diameters(0.0)[0], p.diameters(1.0)[0]) for p in self.parts)
 
     @property
     def area(self) -> float:
+        """m^2; of a tapered section, its mean over the length (volume / length)."""
+        if self.tapered:
+            return math.pi / 4.0 * (_mean_power(self, 0, 2) - _mean_power(self, 1, 2))
         return math.pi / 4.0 * (self.outer_diameter**2 - self.inner_diameter**2)
 
     @property
     def second_moment(self) -> float:
+        """m^4; of a tapered section, its mean over the length (so polar inertia = rho 2 I L)."""
+        if self.tapered:
+            return math.pi / 64.0 * (_mean_power(self, 0, 4) - _mean_power(self, 1, 4))
         return math.pi / 64.0 * (self.outer_diameter**4 - self.inner_diameter**4)
+
+
+def _mean_power(sec: ShaftSection, which: int, p: int) -> float:
+    """Mean over a tapered section of (its outer, which=0, or inner, which=1, diameter)^p for a
+    diameter linear in x: (a^p + a^(p-1) b + ... + b^p) / (p + 1)."""
+    a, b = sec.diameters(0.0)[which], sec.diameters(1.0)[which]
+    return sum(a ** (p - k) * b ** k for k in range(p + 1)) / (p + 1)
 
 
 @dataclass(frozen=True)
@@ -113,6 +157,9 @@ class Rotor:
     stiffness_proportional_damping: float = 0.0  # s (Rayleigh beta)
     max_speed_rpm: float = 10000.0
     source: str | None = field(default=None, compare=False)
+    # Rayleigh damping on the shaft elements only, without the disks' mass (ROSS's convention:
+    # its element alpha/beta; docs/ross.md); False: alpha M + beta K of the whole free rotor
+    damping_shaft_only: bool = False
 
     @property
     def length(self) -> float:
@@ -121,13 +168,15 @@ class Rotor:
     @property
     def polar_inertia(self) -> float:
         """kg m^2 about the spin axis: shaft sections and disks."""
-        return sum(s.material.density * s.length * math.pi / 32.0 * (s.outer_diameter ** 4 - s.inner_diameter ** 4)
-                   for s in self.sections) + sum(d.polar_inertia for d in self.disks)
+        return sum(s.material.density * s.length * (2.0 * s.second_moment if s.tapered else
+                                                    math.pi / 32.0 * (s.outer_diameter ** 4 - s.inner_diameter ** 4))
+                   for sec in self.sections for s in sec.parts) + sum(d.polar_inertia for d in self.disks)
 
     @property
     def mass(self) -> float:
         """kg: shaft sections and disks."""
-        return sum(s.area * s.length * s.material.density for s in self.sections) + sum(d.mass for d in self.disks)
+        return sum(s.area * s.length * s.material.density for sec in self.sections for s in sec.parts) + \
+            sum(d.mass for d in self.disks)
 
     def burst_speed_rpm(self) -> tuple[float, str]:
         """(speed [rpm], part) at which the first part would burst even if made of the strongest
@@ -138,9 +187,10 @@ class Rotor:
             return math.sqrt(8.0 * MAX_STRENGTH / ((3.0 + m.poisson_ratio) * m.density))
 
         best = (math.inf, "")
-        for i, s in enumerate(self.sections):
-            omega = v_burst(s.material) / (s.outer_diameter / 2.0)
-            best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.outer_diameter:g} m)"))
+        for i, sec in enumerate(self.sections):
+            for s in sec.parts:
+                omega = v_burst(s.material) / (s.max_outer_diameter / 2.0)
+                best = min(best, (omega * 30.0 / math.pi, f"rotor.sections[{i}] (outer diameter {s.max_outer_diameter:g} m)"))
         if self.disks:
             light = min((s.material for s in self.sections), key=lambda m: m.density)
             for i, d in enumerate(self.disks):
@@ -226,19 +276,37 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     if not materials:
         raise InputError("rotor.materials", {}, "define at least one material")
 
-    sections = []
-    for s in r.array_of_tables("sections"):
-        length = _dimension(s, "length")
+    def cross_section(s: _Table) -> tuple:
+        """(outer, inner, material, outer at the right end, inner at the right end) of a section or layer."""
         d_out = _dimension(s, "outer_diameter")
         d_in = s.number("inner_diameter", 0.0, nonnegative=True)
         if d_in >= d_out:
             raise InputError(f"{s.path}.inner_diameter", d_in, f"must be < outer_diameter ({d_out})")
+        d_out_r = _dimension(s, "outer_diameter_right") if s.has("outer_diameter_right") else None
+        d_in_r = s.number("inner_diameter_right", nonnegative=True) if s.has("inner_diameter_right") else None
+        if d_out_r is not None or d_in_r is not None:
+            right_out = d_out if d_out_r is None else d_out_r
+            right_in = d_in if d_in_r is None else d_in_r
+            if right_in >= right_out:
+                raise InputError(f"{s.path}.inner_diameter_right", right_in,
+                                 f"must be < the outer diameter at the right end ({right_out})")
         mat_name = s.string("material")
         if mat_name not in materials:
             raise InputError(f"{s.path}.material", mat_name, f"unknown material; defined: {', '.join(materials)}")
+        return d_out, d_in, materials[mat_name], d_out_r, d_in_r
+
+    sections = []
+    for s in r.array_of_tables("sections"):
+        length = _dimension(s, "length")
+        d_out, d_in, mat, d_out_r, d_in_r = cross_section(s)
         n_el = s.integer("elements", 1)
+        layers = []
+        for lay in s.array_of_tables("layers", []):
+            lo, li, lm, lo_r, li_r = cross_section(lay)
+            lay.finish()
+            layers.append(ShaftSection(length, lo, li, lm, n_el, lo_r, li_r))
         s.finish()
-        sections.append(ShaftSection(length, d_out, d_in, materials[mat_name], n_el))
+        sections.append(ShaftSection(length, d_out, d_in, mat, n_el, d_out_r, d_in_r, tuple(layers)))
     if not sections:
         raise InputError("rotor.sections", [], "define at least one shaft section")
     total = sum(s.length for s in sections)
@@ -327,11 +395,12 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     damping = r.table("damping", {})
     alpha = damping.number("mass_proportional", 0.0, nonnegative=True)
     beta = damping.number("stiffness_proportional", 0.0, nonnegative=True)
+    shaft_only = damping.boolean("shaft_only", False)
     damping.finish()
     max_speed = r.number("max_speed_rpm", 10000.0, positive=True)
     r.finish()
     rotor = Rotor(name, tuple(sections), tuple(disks), stations, tuple(supports), reduction,
-                  alpha, beta, max_speed, source)
+                  alpha, beta, max_speed, source, damping_shaft_only=shaft_only)
     burst, part = rotor.burst_speed_rpm()
     if max_speed > burst:
         raise InputError("rotor.max_speed_rpm", max_speed, f"must be <= {burst:.4g} rpm: above it {part} bursts even if "
@@ -339,11 +408,27 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
     return rotor
 
 
-def load_rotor(path) -> Rotor:
-    """Read the ``[rotor]`` table of a rotor file or of a scenario file that contains one."""
+def read_rotor_table(path, **ross) -> dict:
+    """The ``[rotor]`` table of a rotor file, of a scenario file that contains one (``include``
+    resolved), or of a rotor file written by ROSS's ``Rotor.save`` (converted by
+    :func:`rotorlanding.from_ross.rotor_table` with the options ``ross``). Not validated yet."""
     path = Path(path)
     try:
         data = load_toml(path)
     except InputError as err:
         raise err.with_file(str(path)) from None
-    return rotor_from_dict(data, source=str(path))
+    if "rotor" not in data:
+        from .from_ross import is_ross_layout, rotor_table
+
+        if is_ross_layout(data):
+            return rotor_table(data, source=str(path), **ross)
+        raise InputError("rotor", None, "missing required table [rotor] (nor is it a rotor saved by ROSS)",
+                         file=str(path))
+    return data["rotor"]
+
+
+def load_rotor(path, bearings_at_rpm: float | None = None) -> Rotor:
+    """Read and validate the rotor of a rotor, scenario or ROSS file (:func:`read_rotor_table`);
+    ``bearings_at_rpm`` [rpm]: a ROSS file's frequency-dependent bearing coefficients at that speed."""
+    ross = {} if bearings_at_rpm is None else {"bearings_at_rpm": bearings_at_rpm}
+    return rotor_from_dict({"rotor": read_rotor_table(path, **ross)}, source=str(path))

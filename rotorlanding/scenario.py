@@ -562,7 +562,7 @@ def _plausible(sc: Scenario) -> None:
     damp("spin.c_w1", sc.spin.c_w1, ip, "rotor's spin (polar inertia, kg m^2)")
     damp("spin.c_w2", 2.0 * sc.spin.c_w2 * omega, ip, "rotor's spin (2 c_w2 Omega on the polar inertia, kg m^2)")
     if sc.unbalance is not None and sc.unbalance.magnitude > sc.rotor.mass * max(
-            s_.outer_diameter for s_ in sc.rotor.sections) / 2.0:
+            s_.max_outer_diameter for s_ in sc.rotor.sections) / 2.0:
         raise InputError("unbalance.magnitude", sc.unbalance.magnitude, "must be <= rotor mass x its largest radius "
                          "(all of the rotor at its rim)")
     if sc.solver.output_period > sc.t_end:

@@ -103,14 +103,22 @@ def _shape_functions(xi: float, length: float, phi: float):
     return nv, dnv, npsi, dnpsi
 
 
-def plane_matrices(length, youngs_modulus, shear_modulus, density, area, second_moment, kappa):
-    """In-plane 4x4 (translational mass, rotary mass, stiffness) for u = [v1, psi1, v2, psi2]."""
+def plane_matrices(length, youngs_modulus, shear_modulus, density, area, second_moment, kappa, taper=None):
+    """In-plane 4x4 (translational mass, rotary mass, stiffness) for u = [v1, psi1, v2, psi2].
+
+    ``taper``: a conical element, (outer, inner) diameters [m] at its left and right ends
+    ``(do_l, di_l, do_r, di_r)``; ``area`` and ``second_moment`` are then those of the mid-length
+    section, which set phi (Genta & Gugliotta 1988, the conical element of ROSS), while the
+    integrals take A(x) and I(x) of the linearly varying diameters (degree 2 and 4: the 5-point
+    rule stays exact)."""
     L, E, G_, rho, A, I = length, youngs_modulus, shear_modulus, density, area, second_moment
     phi = 12.0 * E * I / (kappa * G_ * A * L**2)
     mt = np.zeros((4, 4))
     mr = np.zeros((4, 4))
     k = np.zeros((4, 4))
     for xi, w in zip(_GAUSS_XI, _GAUSS_W):
+        if taper is not None:
+            A, I = _section_properties(taper, xi)
         nv, dnv, npsi, dnpsi = _shape_functions(xi, L, phi)
         # shear strain dv/dx - psi per unit DOF, constant along the element; written out
         # because dnv - npsi cancels catastrophically for slender elements (phi -> 0)
@@ -121,9 +129,17 @@ def plane_matrices(length, youngs_modulus, shear_modulus, density, area, second_
     return mt, mr, k
 
 
-def element_matrices(length, youngs_modulus, shear_modulus, density, area, second_moment, kappa):
-    """8x8 (M, K, G) of one shaft element in DOF order [y1 z1 alpha1 beta1 y2 z2 alpha2 beta2]."""
-    mt, mr, k = plane_matrices(length, youngs_modulus, shear_modulus, density, area, second_moment, kappa)
+def _section_properties(taper, xi: float) -> tuple[float, float]:
+    """(area [m^2], second moment [m^4]) at xi of a conical element ``(do_l, di_l, do_r, di_r)``."""
+    do_l, di_l, do_r, di_r = taper
+    do, di = do_l + (do_r - do_l) * xi, di_l + (di_r - di_l) * xi
+    return np.pi / 4.0 * (do**2 - di**2), np.pi / 64.0 * (do**4 - di**4)
+
+
+def element_matrices(length, youngs_modulus, shear_modulus, density, area, second_moment, kappa, taper=None):
+    """8x8 (M, K, G) of one shaft element in DOF order [y1 z1 alpha1 beta1 y2 z2 alpha2 beta2]
+    (``taper``: see :func:`plane_matrices`)."""
+    mt, mr, k = plane_matrices(length, youngs_modulus, shear_modulus, density, area, second_moment, kappa, taper)
     mp = mt + mr
     m = _P_Y.T @ mp @ _P_Y + _P_Z.T @ mp @ _P_Z
     kk = _P_Y.T @ k @ _P_Y + _P_Z.T @ k @ _P_Z
@@ -199,19 +215,35 @@ def assemble(rotor: Rotor) -> RotorFE:
     G = np.zeros((n, n))
     mass = 0.0
     ip_total = 0.0
+    starts = np.concatenate([[0.0], np.cumsum([s.length for s in rotor.sections])])
     for e, si in enumerate(owner):
-        sec = rotor.sections[si]
-        mat = sec.material
-        L = nodes[e + 1] - nodes[e]
-        kappa = cowper_shear_coefficient(mat.poisson_ratio, sec.inner_diameter, sec.outer_diameter)
-        me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
-                                      sec.area, sec.second_moment, kappa)
-        idx = slice(NDOF_NODE * e, NDOF_NODE * (e + 2))
-        M[idx, idx] += me
-        K[idx, idx] += ke
-        G[idx, idx] += ge
-        mass += mat.density * sec.area * L
-        ip_total += mat.density * 2.0 * sec.second_moment * L
+        for sec in rotor.sections[si].parts:  # the section, then its coaxial layers on the same nodes
+            mat = sec.material
+            L = nodes[e + 1] - nodes[e]
+            if sec.tapered:
+                # the element's end diameters on the section's linear taper; kappa from the mean
+                # diameters and phi from the mid-length section, as ROSS's conical element
+                (do_l, di_l), (do_r, di_r) = (sec.diameters((x - starts[si]) / sec.length) for x in nodes[e:e + 2])
+                taper = (do_l, di_l, do_r, di_r)
+                kappa = cowper_shear_coefficient(mat.poisson_ratio, 0.5 * (di_l + di_r), 0.5 * (do_l + do_r))
+                a_mid, i_mid = _section_properties(taper, 0.5)
+                me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
+                                              a_mid, i_mid, kappa, taper)
+                a_mean = sum(w * _section_properties(taper, xi)[0] for xi, w in zip(_GAUSS_XI, _GAUSS_W))
+                i_mean = sum(w * _section_properties(taper, xi)[1] for xi, w in zip(_GAUSS_XI, _GAUSS_W))
+            else:
+                kappa = cowper_shear_coefficient(mat.poisson_ratio, sec.inner_diameter, sec.outer_diameter)
+                me, ke, ge = element_matrices(L, mat.youngs_modulus, mat.shear_modulus, mat.density,
+                                              sec.area, sec.second_moment, kappa)
+                a_mean, i_mean = sec.area, sec.second_moment
+            idx = slice(NDOF_NODE * e, NDOF_NODE * (e + 2))
+            M[idx, idx] += me
+            K[idx, idx] += ke
+            G[idx, idx] += ge
+            mass += mat.density * a_mean * L
+            ip_total += mat.density * 2.0 * i_mean * L
+
+    m_shaft = M.copy() if rotor.damping_shaft_only else None
 
     def node_at(x: float) -> int:
         return int(np.argmin(np.abs(nodes - x)))
@@ -230,7 +262,10 @@ def assemble(rotor: Rotor) -> RotorFE:
         mass += d.mass
         ip_total += d.polar_inertia
 
-    C = rotor.mass_proportional_damping * M + rotor.stiffness_proportional_damping * K
+    # Rayleigh damping of the whole free rotor, or (damping.shaft_only, ROSS's element damping) of
+    # the shaft elements without the disks' mass
+    C = rotor.mass_proportional_damping * (m_shaft if rotor.damping_shaft_only else M) + \
+        rotor.stiffness_proportional_damping * K
     stations = {name: node_at(x) for name, x in rotor.stations.items()}
     return RotorFE(rotor, nodes, M, K, G, C, stations, disk_nodes, mass, ip_total)
 

@@ -14,6 +14,8 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 CASES = {
     "build_rotor_and_land.py": ["campbell.png", "orbits.png", "displacements.png", "results.h5", "rotor.toml"],
     "paper_forward_whirl.py": ["forward_whirl.png", "spectrum.png", "results.h5"],
+    "ross_landing.py": ["rotor.png", "campbell.png", "orbits.png", "displacements.png", "forces.png", "results.h5",
+                        "rotor.toml"],
     "whirl_map.py": ["whirl_map.png", "orbits.png", "sweep.csv"],
     "coastdown.py": ["coastdown_overview.png", "speeds.png", "coastdown.png", "results.h5", "summary.json"],
     "diagnose_measured.py": ["measured_vs_model.png", "features.png", "report.md", "report.json"],
@@ -46,6 +48,8 @@ def test_example_short(script, tmp_path):
     print(f"{script} --short: {cpu:.1f} s CPU, {wall:.1f} s wall")
     if script == "paper_forward_whirl.py":
         assert "whirl at the DE bearing: forward" in stdout  # the paper's result, from the API
+    if script == "ross_landing.py":  # the ROSS file, read without ROSS
+        assert "Rotor('compressor rotor from ROSS': 11 sections, 4 disks" in stdout
     if script == "diagnose_measured.py":
         # the paper's story at two speeds: axial rub is what the model without it lacks
         assert "named effect: axial_rub" in stdout, stdout
