@@ -715,3 +715,16 @@ def system_forces(spec: LandingSpec):
         return Jq, Jv
 
     return f, jac
+
+
+@_njit
+def rub_series(dy, dz, dvy, dvz, om, wi, q, ta, tb, n_lat, n_ax, x, cl_ax, mu_ax, v_reg, r1, r2, gy, gz, p):
+    """The axial rub's post-processing series (mechanisms._post_rub) over all output samples: the
+    user_forces law compiled as in the solver, the tilt per sample by BLAS's ddot as in numpy
+    (``float(tilt @ q[i, :n_lat])``), so the series equal the plain-Python loop's."""
+    for i in range(dy.shape[0]):
+        if n_ax[i] > 0:
+            ql = q[i, :n_lat]
+            r = _axial_rub_q(dy[i], dz[i], dvy[i], dvz[i], om[i], wi[i], np.dot(ta, ql), np.dot(tb, ql),
+                             abs(x[i]) - cl_ax, n_ax[i], 1.0 if x[i] >= 0 else -1.0, mu_ax, v_reg, r1, r2, False)
+            gy[i], gz[i], p[i] = r[0], r[1], r[4]
