@@ -59,7 +59,14 @@ def child(job: dict) -> dict:
     sets = [f"operating.t_end={job['t_end']}"] if job.get("t_end") else []
     jobs = [(job["scenario"], sets + off) for off in drop_offsets(job["drops"])]
     t1 = time.perf_counter()
-    members = run_all(_member, jobs, job["workers"], failures="raise", blas_threads=None)
+    kw = {}
+    if job.get("warm"):
+        import functools
+
+        from rotorlanding.runner import warm_model
+
+        kw["warm"] = functools.partial(warm_model, job["scenario"], sets)
+    members = run_all(_member, jobs, job["workers"], failures="raise", blas_threads=None, **kw)
     t2 = time.perf_counter()
     return {"load": load, "ensemble_s": t2 - t1, "process_s": t2 - t0, "members": members}
 
@@ -86,6 +93,7 @@ def main(argv=None) -> int:
     ap.add_argument("--a-tree")
     ap.add_argument("--b-tree")
     ap.add_argument("--t-end", type=float)
+    ap.add_argument("--b-warm", action="store_true", help="B warms the model in the parent before forking (runner.warm_model)")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
     if a.child:
@@ -96,7 +104,7 @@ def main(argv=None) -> int:
     trees = {"A": a.a_tree, "B": a.b_tree}
     for rep in range(a.repeat):
         for name in ("A", "B") if rep % 2 == 0 else ("B", "A"):
-            runs[name].append(run_child(job, trees[name]))
+            runs[name].append(run_child(dict(job, warm=a.b_warm and name == "B"), trees[name]))
     report = {"scenario": job["scenario"], "drops": a.drops, "workers": a.workers, "repeat": a.repeat, "variants": {}}
     for name, rs in runs.items():
         best = min(rs, key=lambda r: r["ensemble_s"])
