@@ -191,28 +191,34 @@ def plot_map(report: dict, path) -> None:
     kx, ky = report["keys"]
     vx, vy = report["values"]
     classes = [c for c in CLASSES if c != "failed" or any(cl["counts"]["failed"] for cl in report["cells"])]
-    fig, axes = plt.subplots(1, len(classes), figsize=(4.2 * len(classes), 3.8), squeeze=False)
-    for ax, c in zip(axes[0], classes):
+    # one panel per class, stacked; the width grows with the number of columns so labels stay legible
+    w = max(6.0, 0.8 * len(vx) + 2.5)
+    fig, axes = plt.subplots(len(classes), 1, figsize=(w, (0.45 * len(vy) + 1.3) * len(classes)), squeeze=False,
+                             sharex=True)
+    labels = [[f"{v:g}" if isinstance(v, (int, float)) else str(v) for v in vals] for vals in (vx, vy)]
+    for ax, c in zip(axes[:, 0], classes):
         P = np.zeros((len(vy), len(vx)))
         for cell in report["cells"]:
             P[vy.index(cell[ky]), vx.index(cell[kx])] = cell["probability"][c]
         im = ax.imshow(P, origin="lower", vmin=0.0, vmax=1.0, cmap="viridis", aspect="auto")
         for cell in report["cells"]:
-            i, j = vx.index(cell[kx]), vy.index(cell[ky])
-            txt = f"{cell['probability'][c]:.2f}"
+            p = cell["probability"][c]
+            if p == 0.0:
+                continue  # empty cells stay dark and unlabelled
+            txt = f"{p:.2f}"
             f = cell.get(f"{c}_frequency_hz")
             if f:
                 txt += f"\n{f:.0f} Hz"
-            ax.text(i, j, txt, ha="center", va="center", fontsize=7,
-                    color="w" if cell["probability"][c] < 0.6 else "k")
-        ax.set_xticks(range(len(vx)), [f"{v:g}" if isinstance(v, (int, float)) else str(v) for v in vx], fontsize=7)
-        ax.set_yticks(range(len(vy)), [f"{v:g}" if isinstance(v, (int, float)) else str(v) for v in vy], fontsize=7)
-        ax.set_xlabel(kx, fontsize=8)
+            ax.text(vx.index(cell[kx]), vy.index(cell[ky]), txt, ha="center", va="center", fontsize=6.5,
+                    color="w" if p < 0.6 else "k")
+        ax.set_xticks(range(len(vx)), labels[0], fontsize=7)
+        ax.set_yticks(range(len(vy)), labels[1], fontsize=7)
         ax.set_ylabel(ky, fontsize=8)
         ax.set_title(f"P({c})", fontsize=9)
-    fig.colorbar(im, ax=axes[0].tolist(), shrink=0.8, label="probability over drop directions")
+    axes[-1, 0].set_xlabel(kx, fontsize=8)
+    fig.colorbar(im, ax=axes[:, 0].tolist(), shrink=0.9, label="probability over drop directions")
     fig.suptitle(f"whirl class per cell, {report['drops_per_cell']} drops each "
-                 f"({report['drop_radius_m'] * 1e6:g} um circle)", fontsize=9)
+                 f"({report['drop_radius_m'] * 1e6:g} um circle); frequency: median of that class", fontsize=9)
     path = Path(path)
     tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}.png")
     try:
