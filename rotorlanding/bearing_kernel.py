@@ -584,6 +584,29 @@ def landing_jacobian(PB, IDX, R, q, v, tilts, amb_axial, fq, fv, out):
     return out
 
 
+def direct(dispatcher, *args):
+    """The compiled function of a numba dispatcher for exactly the types of ``args`` (compiled or
+    loaded from the cache now), callable without the dispatcher's per-call type resolution; the
+    dispatcher itself when numba does not expose it. Same machine code, so the same results."""
+    dispatcher(*args)
+    try:
+        sig = tuple(dispatcher.typeof_pyval(a) for a in args)
+        return dispatcher.overloads[sig].entry_point
+    except (AttributeError, KeyError, TypeError):
+        return dispatcher
+
+
+@_njit
+def update_tilts(q, TA, TB, rows, n_lat, tilts):
+    """tilts[rows[k]] = (TA[k] . q[:n_lat], TB[k] . q[:n_lat]): the rotor tilt at the axial faces of
+    the rubbing bearings, once per step from the pre-step (np.dot is BLAS's ddot here as in numpy,
+    so the values are the bits of ``float(row @ q[:n_lat])``)."""
+    ql = q[:n_lat]
+    for k in range(rows.shape[0]):
+        tilts[rows[k], 0] = np.dot(TA[k], ql)
+        tilts[rows[k], 1] = np.dot(TB[k], ql)
+
+
 def landing_functions(spec: LandingSpec, local_index: list, tilts: np.ndarray, include_rotor_loads: bool):
     """(force, jacobian) user functions of one ObjectGenericODE2 over all bearings.
 
@@ -598,17 +621,25 @@ def landing_functions(spec: LandingSpec, local_index: list, tilts: np.ndarray, i
     n = int(IDX.max()) + 1
     out = np.zeros(n)
     jout = np.zeros((n, n))
-    rhs, jac, asarray = landing_rhs, landing_jacobian, np.asarray
     amb = spec.scenario.amb
     t_drop, drop_axial = amb.t_drop, amb.drop_axial
     thrust = spec.thrust
 
+    # the compiled entry points for exactly these argument types (numba's dispatcher would type
+    # every argument on every call: ~0.2 us of the ~1 us kernel call); q, q_t arrive from Exudyn
+    # as lists; the force goes back as the reused array (Exudyn copies it on return)
+    z = np.zeros(n)
+    rhs = direct(landing_rhs, PB, IDX, R, z, z, tilts, 0.0, True, out)
+    jac = direct(landing_jacobian, PB, IDX, R, z, z, tilts, True, 1.0, 1.0, jout)
+    fromiter, f64 = np.fromiter, np.float64
+
     def force(mbs, t, item, q, q_t):
-        return rhs(PB, IDX, R, asarray(q), asarray(q_t), tilts, thrust(t), t < t_drop or not drop_axial,
-                   out).tolist()
+        return rhs(PB, IDX, R, fromiter(q, f64, n), fromiter(q_t, f64, n), tilts, thrust(t),
+                   t < t_drop or not drop_axial, out)
 
     def jacobian(mbs, t, item, q, q_t, fq, fv):
-        return jac(PB, IDX, R, asarray(q), asarray(q_t), tilts, t < t_drop or not drop_axial, fq, fv, jout)
+        return jac(PB, IDX, R, fromiter(q, f64, n), fromiter(q_t, f64, n), tilts, t < t_drop or not drop_axial,
+                   fq, fv, jout)
 
     z = [0.0] * n
     force(None, 0.0, 0, z, z)
@@ -684,3 +715,16 @@ def system_forces(spec: LandingSpec):
         return Jq, Jv
 
     return f, jac
+
+
+@_njit
+def rub_series(dy, dz, dvy, dvz, om, wi, q, ta, tb, n_lat, n_ax, x, cl_ax, mu_ax, v_reg, r1, r2, gy, gz, p):
+    """The axial rub's post-processing series (mechanisms._post_rub) over all output samples: the
+    user_forces law compiled as in the solver, the tilt per sample by BLAS's ddot as in numpy
+    (``float(tilt @ q[i, :n_lat])``), so the series equal the plain-Python loop's."""
+    for i in range(dy.shape[0]):
+        if n_ax[i] > 0:
+            ql = q[i, :n_lat]
+            r = _axial_rub_q(dy[i], dz[i], dvy[i], dvz[i], om[i], wi[i], np.dot(ta, ql), np.dot(tb, ql),
+                             abs(x[i]) - cl_ax, n_ax[i], 1.0 if x[i] >= 0 else -1.0, mu_ax, v_reg, r1, r2, False)
+            gy[i], gz[i], p[i] = r[0], r[1], r[4]

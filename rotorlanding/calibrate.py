@@ -38,6 +38,7 @@ best design's overrides are printed as ``--set`` arguments and TOML lines to pas
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 from pathlib import Path
@@ -45,7 +46,7 @@ from pathlib import Path
 from .config import override_table, range_spec, sample_ranges, study_file
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
-from .runner import reduction_cache, run_all
+from .runner import reduction_cache, run_all, warm_model
 from .validate import paper, paper_dir
 
 #: s, the onset change between steps h and h/2 that an ensemble may show without its noise
@@ -184,7 +185,8 @@ def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
 def _run_all(jobs, workers):
     results: dict[int, dict] = {}
     # _run turns a failing design into its row; BLAS as before (runner.worker_setup says why)
-    it = run_all(_run, jobs, workers, failures="raise", blas_threads=None)
+    warm = functools.partial(warm_model, paper_dir() / "forward_whirl_landing.toml")  # see validate
+    it = run_all(_run, jobs, workers, failures="raise", blas_threads=None, warm=warm)
     members: dict[tuple, list] = {}
     for i, case, r in it:
         if "#" in case:  # "CASE#k": member k of CASE's ensemble

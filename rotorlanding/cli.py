@@ -244,6 +244,22 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def cmd_whirl_map(args) -> int:
+    from .whirlmap import run_map
+
+    if args.workers < 1:
+        raise InputError("--workers", args.workers, "must be >= 1")
+    r = run_map(args.map, args.out, workers=args.workers)
+    failed = sum(c["counts"]["failed"] for c in r["cells"])
+    print(f"{len(r['cells'])} cells x {r['drops_per_cell']} drops = {r['drops']} drops in {r['wall_s']:.1f} s "
+          f"({r['drops_per_minute']:.0f} drops/min), {failed} failed; {args.out}/whirl_map.json, whirl_map.csv, "
+          f"whirl_map.png")
+    if failed == r["drops"]:
+        print(f"rotorlanding: every one of the {r['drops']} drops failed", file=sys.stderr)
+        return 1
+    return 0
+
+
 def cmd_diagnose(args) -> int:
     from .diagnose_run import run_diagnose
 
@@ -359,6 +375,13 @@ def build_parser() -> argparse.ArgumentParser:
     sw.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     sw.add_argument("--scheduler", default=None, help="Dask scheduler address (tcp://host:8786)")
     sw.set_defaults(func=cmd_sweep)
+
+    wm = sub.add_parser("whirl-map", help="probability of each whirl class over two scenario keys, several drop "
+                                          "directions per cell, with its figure")
+    wm.add_argument("map", help="whirl-map TOML file (scenario, drops, [fixed], [axes] with two keys)")
+    wm.add_argument("--out", default="whirl_map", help="output folder (default ./whirl_map)")
+    wm.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    wm.set_defaults(func=cmd_whirl_map)
 
     dg = sub.add_parser("diagnose", help="find the missing effect that explains a model-measurement gap")
     dg.add_argument("--measured", required=True, help="CSV, .mat, results.h5 or a feature table (.toml/.json)")

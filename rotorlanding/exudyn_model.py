@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bearing_kernel import bearing_functions, landing_functions
+from .bearing_kernel import bearing_functions, direct, landing_functions, update_tilts
 from .forces import (BEARING_LOCAL, bearing_forces, mechanism_functions, registry_forces, rotor_forces,
                      rotor_loads_jacobian, rotor_loads_need_lateral)
 from .landing import LandingSpec
@@ -121,9 +121,16 @@ class PreStep:
         self.var = exu.OutputVariableType.Coordinates_t
         self.updates = 0
         self.tilts = []  # (list [alpha, beta] read by a bearing closure, row alpha, row beta, n_lat)
+        # merged connector: (compiled update, arguments after q) doing what the loop over
+        # self.tilts does, in one call (the same bits, bearing_kernel.update_tilts)
+        self.tilt_update = None
+        self.sd = None
 
     def __call__(self, mbs, t) -> bool:
-        if self.tilts:
+        if self.tilt_update is not None:
+            f, args = self.tilt_update
+            f(self.sd.GetODE2Coordinates(), *args)
+        elif self.tilts:
             q = mbs.systemData.GetODE2Coordinates()
             for holder, ra, rb, n in self.tilts:
                 holder[0] = float(ra @ q[:n])
@@ -309,6 +316,12 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
                 tilts[k] = [float(b.tilt_alpha @ q0[: spec.n_lat]), float(b.tilt_beta @ q0[: spec.n_lat])]
                 pre.tilts.append((tilts[k], b.tilt_alpha, b.tilt_beta, spec.n_lat))
         fl, jl = landing_functions(spec, local, tilts, include_rotor_loads=not need_lateral)
+        if pre.tilts:
+            rows = np.array([k for k, b in enumerate(spec.bearings) if rub_tilt(b)], dtype=np.int64)
+            TA = np.array([np.ascontiguousarray(b.tilt_alpha, float) for b in spec.bearings if rub_tilt(b)])
+            TB = np.array([np.ascontiguousarray(b.tilt_beta, float) for b in spec.bearings if rub_tilt(b)])
+            args = (TA, TB, rows, spec.n_lat, tilts)
+            pre.tilt_update = (direct(update_tilts, q0, *args), args)
         conn = st_nodes + [spin_node] + [nd for ro in race_outer for nd in ro]
         n = ns + 2 + 5 * len(spec.bearings)
         mbs.AddObject(ObjectGenericODE2(nodeNumbers=conn, massMatrix=np.zeros((n, n)),
@@ -360,6 +373,7 @@ def build_exudyn(spec: LandingSpec, q0=None, v0=None, *, analytic_jacobian: bool
     mbs.Assemble()
     if instrument is not None:
         mbs = mbs_real
+    pre.sd = mbs.systemData
     return ExudynModel(SC, mbs, spec, nodes, sensors, pre)
 
 

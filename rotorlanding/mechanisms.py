@@ -264,19 +264,19 @@ def _post_radial(ev: Evaluation, L) -> None:
 
 
 def _post_rub(ev: Evaluation, L) -> None:
-    """Axial rub on the thrust face, eqs 18-21 (acts while the face carries load)."""
+    """Axial rub on the thrust face, eqs 18-21 (acts while the face carries load): the same law as
+    ``user_forces.axial_rub``, compiled (``bearing_kernel.rub_series``, equal series; the plain
+    loop over the 72-point quadrature took about a third of a landing's post-processing)."""
+    from .bearing_kernel import rub_series
+
     k, b, a = ev.kin, ev.bearing, ev.spec.scenario.axial
     nt, n_lat = len(ev.t), ev.spec.n_lat
     gy, gz, p = np.zeros(nt), np.zeros(nt), np.zeros(nt)
-    for i in range(nt):
-        n_ax = k["n_ax"][i]
-        if n_ax > 0:
-            x, ql = k["x"][i], ev.q[i, :n_lat]
-            gy[i], gz[i], _, _, p[i] = axial_rub(k["dy"][i], k["dz"][i], k["dvy"][i], k["dvz"][i], k["omega"][i],
-                                                 k["wi"][i], float(b.tilt_alpha @ ql), float(b.tilt_beta @ ql),
-                                                 abs(x) - a.cl_ax, n_ax,
-                                                 1.0 if x >= 0 else -1.0, L.mu_ax, L.v_reg_axial,
-                                                 L.face_inner_radius, L.face_outer_radius)
+    arr = [np.asarray(k[key], dtype=float) for key in ("dy", "dz", "dvy", "dvz", "omega", "wi")]
+    rub_series(*arr, np.ascontiguousarray(ev.q, dtype=float), np.ascontiguousarray(b.tilt_alpha, dtype=float),
+               np.ascontiguousarray(b.tilt_beta, dtype=float), n_lat, np.asarray(k["n_ax"], dtype=float),
+               np.asarray(k["x"], dtype=float), float(a.cl_ax), float(L.mu_ax), float(L.v_reg_axial),
+               float(L.face_inner_radius), float(L.face_outer_radius), gy, gz, p)
     ev.out("rub_force_y_n", gy)
     ev.out("rub_force_z_n", gz)
     ev.dissipated("axial_rub", p)

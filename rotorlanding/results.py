@@ -169,13 +169,13 @@ def _fill(h5, scenario_raw, scenario_name, names, t, q, v, series, units, summar
     held[-1].attrs["unit"] = "s"
     g = h5.create_group("states")
     for key, arr, cu in zip(("q", "v"), (q, v), state_units(names)):
-        ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4)
+        ds = g.create_dataset(key, data=np.asarray(arr), compression="gzip", compression_opts=4, shuffle=True)
         ds.attrs["names"] = json.dumps(names)
         ds.attrs["units"] = json.dumps(cu)
         held.append(ds)
     s = h5.create_group("series")
     for name, arr in series.items():
-        ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4)
+        ds = s.create_dataset(name, data=np.asarray(arr), compression="gzip", compression_opts=4, shuffle=True)
         ds.attrs["unit"] = units[name]
         held.append(ds)
     held.append(h5.create_dataset("summary_json", data=json.dumps(summary)))

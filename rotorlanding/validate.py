@@ -25,7 +25,7 @@ from pathlib import Path
 
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
-from .runner import run_all
+from .runner import run_all, warm_model
 from .safeio import atomic_write_text
 
 
@@ -801,7 +801,9 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     jobs = [(k, f, sets, str(out), t_end, rig, True) for k, (f, sets) in CASES.items()]
     jobs += _ensemble_jobs(out, t_end, rig)
     wall0 = time.perf_counter()
-    summaries = dict(run_all(_run_case, jobs, workers, failures="raise", blas_threads=None))
+    # the workers fork after the parent has loaded the model code and kernels (runner.warm_model)
+    warm = functools.partial(warm_model, paper_dir() / "forward_whirl_landing.toml")
+    summaries = dict(run_all(_run_case, jobs, workers, failures="raise", blas_threads=None, warm=warm))
     members = {}
     for name in list(summaries):
         if "_drop" in name:

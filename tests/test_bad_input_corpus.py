@@ -693,7 +693,7 @@ def test_every_shipped_input_still_loads():
     """The plausibility limits sit where physics ends: every scenario, rotor, sweep case,
     calibration space (load_space checks both ends of its ranges) and fit-mode range end shipped
     in scenarios/, and both ends of every parameter range diagnose searches, must load."""
-    from rotorlanding import calibrate, modefit, sweep_run
+    from rotorlanding import calibrate, modefit, sweep_run, whirlmap
     from rotorlanding.coastdown_run import load_coastdown
     from rotorlanding.effects import CATALOGUE
     from rotorlanding.rotor import load_rotor, rotor_from_dict
@@ -728,13 +728,20 @@ def test_every_shipped_input_still_loads():
         elif "ranges" in data:
             calibrate.load_space(f)
             kinds["calibration space"] += 1
+        elif "axes" in data:  # a whirl-risk map: every cell loads
+            wm = whirlmap.load_map(f)
+            (kx, ky), (vx, vy) = wm["keys"], wm["values"]
+            for x in vx:
+                for y in vy:
+                    load_scenario(wm["base"], whirlmap._sets(wm["fixed"], {kx: x, ky: y}, []))
+            kinds["whirl map"] += 1
         elif f.name == "reference.toml":  # the paper's numbers (validate.paper reads them)
             assert set(data) == {"table1", "table2", "fig39"}
             kinds["paper numbers"] += 1
         else:
             kinds["other"] += 1  # the measured feature table
     assert kinds == {"scenario": 7, "coastdown": 1, "rotor": 2, "fit-modes space": 4, "sweep": 1,
-                     "calibration space": 4, "paper numbers": 1, "other": 1, "rig overlay": 1}
+                     "calibration space": 4, "paper numbers": 1, "other": 1, "rig overlay": 1, "whirl map": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():
             for p in effect.parameters:

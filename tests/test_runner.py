@@ -48,3 +48,28 @@ def test_reduction_cache_is_passed_in_and_gives_the_same_numbers():
             assert np.array_equal(getattr(s, name), getattr(plain, name)), name
     assert again.M is not first.M                       # a hit hands out fresh arrays
     assert landing.craig_bampton is reduction.craig_bampton   # nothing was patched
+
+
+_WARMED = []
+
+
+def _warmed(_):
+    return len(_WARMED)
+
+
+@pytest.mark.parametrize("workers,expected", [(1, 0), (2, 1)])
+def test_warm_runs_once_in_the_parent_before_the_workers_fork(workers, expected):
+    """``warm`` (e.g. runner.warm_model: imports and compiled kernels loaded once) runs in the
+    parent only when workers fork, and the workers inherit what it did."""
+    _WARMED.clear()
+    out = run_all(_warmed, range(3), workers, warm=lambda: _WARMED.append(1))
+    assert len(_WARMED) == expected and out == [expected] * 3
+
+
+def test_warm_model_loads_the_kernels_and_swallows_a_bad_scenario():
+    from rotorlanding.bearing_kernel import landing_rhs, rub_series
+    from rotorlanding.runner import warm_model
+
+    warm_model(ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml")
+    assert landing_rhs.signatures and rub_series.signatures
+    warm_model(ROOT / "no such scenario.toml")  # left to fail in its job
