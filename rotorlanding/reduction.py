@@ -23,6 +23,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.linalg as sla
 
+from .blas import blas_threads
 from .errors import InputError
 from .timoshenko import DOF_NAMES, NDOF_NODE, RotorFE, support_matrices
 
@@ -89,6 +90,7 @@ def boundary_dofs(fe: RotorFE, stations, rotations: bool) -> tuple[list[int], li
     return dofs, names
 
 
+@blas_threads(1)  # one thread: faster at this size, the same floats on every machine (rotorlanding.blas)
 def craig_bampton(fe: RotorFE, stations, n_modes: int, rotations: bool = False) -> LinearRotor:
     """Craig-Bampton reduction of the free rotor onto ``stations`` plus ``n_modes`` modes."""
     b, names = boundary_dofs(fe, stations, rotations)
