@@ -152,12 +152,12 @@ class _Scene:
         vs.general.backgroundColor = [1.0, 1.0, 1.0, 1.0]
         mbs.AddObject(ObjectGround(visualization=VObjectGround(graphicsDataUserFunction=lambda m, i: self.graphics())))
         mbs.Assemble()
-        # camera: from the front (-y), 25 deg above, the axis turned 20 deg towards the viewer's left
-        a, b = math.radians(-65.0), math.radians(-20.0)
+        # camera: from the front (-y), 25 deg above, the axis turned 28 deg
+        a, b = math.radians(-65.0), math.radians(-28.0)
         rx = np.array([[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]])
         rz = np.array([[math.cos(b), -math.sin(b), 0], [math.sin(b), math.cos(b), 0], [0, 0, 1]])
-        centre = [float(self.x[0] + self.x[-1]) / 2, 0.0, 0.0]
-        SC.renderer.SetState({"centerPoint": centre, "maxSceneSize": 1.2 * L, "zoom": 0.5 * L,
+        centre = [float(self.x[0]) + 0.44 * L, 0.0, 0.0]
+        SC.renderer.SetState({"centerPoint": centre, "maxSceneSize": 1.2 * L, "zoom": 0.55 * L,
                               "modelRotation": (rx @ rz).T})
         self.SC, self.mbs = SC, mbs  # keep mbs alive: its graphics user function dies with it
 
@@ -277,6 +277,9 @@ class _Frame:
         cb.ax.tick_params(labelsize=8)
         self.panels = []
         n = len(bearings)
+        xb = {bb.name: spec.fe.rotor.stations[bb.station] for bb in spec.bearings}
+        side = {k: ("left" if v == min(xb.values()) else "right" if v == max(xb.values()) else "middle")
+                for k, v in xb.items()} if len(xb) > 1 else {}
         for j, b in enumerate(bearings):
             hgt = 0.88 / max(n, 1) - 0.1
             ax = self.fig.add_axes([left + 0.07, 0.07 + (n - 1 - j) * (hgt + 0.1), 0.92 - left - 0.06, hgt])
@@ -298,16 +301,27 @@ class _Frame:
             ax.tick_params(labelsize=8)
             ax.set_xlabel("y [um] (horizontal)", fontsize=9)
             ax.set_ylabel("z [um] (up)", fontsize=9)
-            ax.set_title(f"{b.name} journal relative to its inner race\n(last {RECENT_S * 1e3:.0f} ms in colour)", fontsize=9.5)
+            where = f" ({side[b.name]} in 3D)" if b.name in side else ""
+            ax.set_title(f"{b.name}{where}: journal relative to its inner race\n(last {RECENT_S * 1e3:.0f} ms in colour)",
+                         fontsize=9.5)
             old, = ax.plot([], [], color="0.72", lw=0.6)
             lc = LineCollection([], cmap=scene.cmap, norm=self.cnorm, linewidths=2.0)
             ax.add_collection(lc)
             dot, = ax.plot([], [], "o", ms=7, mfc="tab:blue", mec="k", zorder=5)
             arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0),
-                                arrowprops=dict(arrowstyle="-|>", color=(0.85, 0.05, 0.05), lw=2.0))
+                                arrowprops=dict(arrowstyle="-|>", color=(0.85, 0.05, 0.05), lw=2.2), zorder=6)
             label = ax.text(0.02, 0.03, "", transform=ax.transAxes, fontsize=9, family="monospace")
-            self.panels.append(dict(name=b.name, ey=ey, ez=ez, f=f, lc=lc, old=old, dot=dot, arrow=arrow, label=label, lim=lim))
+            self.panels.append(dict(name=b.name, c=c, ax=ax, ey=ey, ez=ez, f=f, lc=lc, old=old, dot=dot, arrow=arrow, label=label, lim=lim))
         self.speed = series.get("rotor_speed_rpm")
+
+    def circles(self) -> dict:
+        """Per bearing the clearance circle in the frame's pixels: [column, row, radius]."""
+        h = self.fig.bbox.height
+        out = {}
+        for p in self.panels:
+            (x0, y0), (x1, _) = p["ax"].transData.transform([(0.0, 0.0), (p["c"], 0.0)])
+            out[p["name"]] = [float(x0), float(h - y0), float(x1 - x0)]
+        return out
 
     def draw(self, k: int, image: np.ndarray) -> np.ndarray:
         self.img.set_data(image)
@@ -328,7 +342,7 @@ class _Frame:
             r = math.hypot(ey[-1], ez[-1])
             if fk > 0 and r > 0:  # force on the journal: from the contact point towards the centre
                 n = np.array([ey[-1], ez[-1]]) / r
-                ln = 0.6 * p["lim"] * fk / self.cnorm.vmax
+                ln = p["lim"] * (0.15 + 0.5 * fk / self.cnorm.vmax)
                 p["arrow"].xy = tuple(np.array([ey[-1], ez[-1]]) - n * ln)
                 p["arrow"].set_position((ey[-1], ez[-1]))
                 p["arrow"].set_visible(True)
@@ -395,7 +409,8 @@ def animate(results_path, out_path, *, fps: float = 20.0, view: str = "all", max
     fps: frames per simulated second; play_fps: frames per second of the movie; view: ``all``
     (3D and every bearing's orbit), a bearing name (3D and its orbit) or ``rotor`` (3D only);
     size: (width, height) in pixels; at: time [s] of the still for a .png (default the last sample).
-    Returns {"frames", "file", "magnification", "times_s"}."""
+    Returns {"frames", "file", "magnification", "times_s", "clearance_circles_px" ({bearing:
+    [column, row, radius]} of each clearance circle in the frame), "left_width_px" (the 3D part)}."""
     if view == "DE_NDE":
         view = "all"
     results_path, out_path = _check(results_path, out_path, fps, view, max_frames, play_fps, size, at)
@@ -433,8 +448,8 @@ def animate(results_path, out_path, *, fps: float = 20.0, view: str = "all", max
     has_panels = view != "rotor"
     wl = w if not has_panels else int(round(w * _LEFT))
     scene = _Scene(spec, res["scenario"].get("rotor", {}), series, q, (wl, h), f_max)
-    name = res["scenario"].get("name") or scenario.name if hasattr(scenario, "name") else ""
-    frame = _Frame(spec, series, t, (w, h), view, scene, str(name or results_path.parent.name))
+    name = res.get("attrs", {}).get("scenario_name") or res["scenario"].get("name") or results_path.parent.name
+    frame = _Frame(spec, series, t, (w, h), view, scene, str(name))
     writer = _Writer(out_path, (w, h), play_fps)
     for k in idx:
         img = scene.render(k)
@@ -445,4 +460,5 @@ def animate(results_path, out_path, *, fps: float = 20.0, view: str = "all", max
         writer.add(frame.draw(int(k), img))
     writer.close()
     return {"frames": writer.n, "file": str(out_path), "magnification": scene.mag,
-            "times_s": [float(t[k]) for k in idx]}
+            "times_s": [float(t[k]) for k in idx], "clearance_circles_px": frame.circles(),
+            "left_width_px": wl}
