@@ -234,7 +234,7 @@ class _Scene:
             length = 0.25 * (self.x[-1] - self.x[0]) * force / self.f_max
             tail = tip + n * length
             out.append(gr.Arrow(pAxis=[xs, tail[0], tail[1]], vAxis=[0, tip[0] - tail[0], tip[1] - tail[1]],
-                                radius=0.006, color=[0.85, 0.05, 0.05, 1.0]))
+                                radius=0.009, color=[1.0, 0.1, 0.05, 1.0]))
         del s
         return out
 
@@ -254,7 +254,9 @@ class _Frame:
         from matplotlib.cm import ScalarMappable
 
         w, h = size
-        self.fig = Figure(figsize=(w / 100, h / 100), dpi=100, facecolor="white")
+        # laid out at 12.8 in wide: the text keeps its share of the frame at any --size
+        self.size = (int(w), int(h))
+        self.fig = Figure(figsize=(12.8, 12.8 * h / w), dpi=w / 12.8, facecolor="white")
         self.canvas = FigureCanvasAgg(self.fig)
         self.t, self.series, self.scene = t, series, scene
         bearings = spec.bearings if view in ("all", "rotor") else [b for b in spec.bearings if b.name == view]
@@ -281,8 +283,8 @@ class _Frame:
         side = {k: ("left" if v == min(xb.values()) else "right" if v == max(xb.values()) else "middle")
                 for k, v in xb.items()} if len(xb) > 1 else {}
         for j, b in enumerate(bearings):
-            hgt = 0.88 / max(n, 1) - 0.1
-            ax = self.fig.add_axes([left + 0.07, 0.07 + (n - 1 - j) * (hgt + 0.1), 0.92 - left - 0.06, hgt])
+            hgt = 0.88 / max(n, 1) - 0.115
+            ax = self.fig.add_axes([left + 0.07, 0.07 + (n - 1 - j) * (hgt + 0.115), 0.92 - left - 0.06, hgt])
             c = b.params.clearance * 1e6
             ey = (series[f"{b.name}_y_m"] - series[f"{b.name}_race_y_m"]) * 1e6
             ez = (series[f"{b.name}_z_m"] - series[f"{b.name}_race_z_m"]) * 1e6
@@ -350,7 +352,12 @@ class _Frame:
                 p["arrow"].set_visible(False)
             p["label"].set_text(f"contact {fk / 1e3:5.2f} kN")
         self.canvas.draw()
-        return np.asarray(self.canvas.buffer_rgba())[:, :, :3].copy()
+        rgb = np.asarray(self.canvas.buffer_rgba())[:, :, :3]
+        if rgb.shape[:2] != (self.size[1], self.size[0]):  # a pixel lost to rounding of the dpi
+            from PIL import Image
+
+            rgb = np.asarray(Image.fromarray(rgb).resize(self.size))
+        return rgb.copy()
 
 
 class _Writer:
