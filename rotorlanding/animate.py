@@ -105,9 +105,12 @@ class _Scene:
         import exudyn.graphics as gr
         from exudyn.itemInterface import ObjectGround, VObjectGround
         from matplotlib import colormaps
+        from matplotlib.colors import ListedColormap
 
         self.gr, self.spec, self.q = gr, spec, q
-        self.cmap = colormaps["YlOrRd"]
+        # YlOrRd without its palest eighth, so that a sleeve without contact is still visibly coloured;
+        # one map for the sleeves, the orbit traces and the colour bar
+        self.cmap = ListedColormap(colormaps["YlOrRd"](np.linspace(0.15, 1.0, 256)))
         self.f_max = f_max
         fe, rotor = spec.fe, spec.fe.rotor
         self.x = fe.nodes
@@ -166,7 +169,7 @@ class _Scene:
         return full[0::4] * self.mag, full[1::4] * self.mag
 
     def force_colour(self, f: float) -> list:
-        c = self.cmap(0.15 + 0.85 * min(1.0, max(0.0, f / self.f_max)))
+        c = self.cmap(min(1.0, max(0.0, f / self.f_max)))
         return [float(c[0]), float(c[1]), float(c[2]), 1.0]
 
     def graphics(self) -> list:
@@ -338,7 +341,7 @@ class _Frame:
             pts = np.column_stack([ey[j0:], ez[j0:]])
             if len(pts) > 1:
                 p["lc"].set_segments(np.stack([pts[:-1], pts[1:]], axis=1))
-                p["lc"].set_array(np.maximum(f[j0 + 1:], 0.0) + 0.15 * self.cnorm.vmax)
+                p["lc"].set_array(np.maximum(f[j0 + 1:], 0.0))
             p["dot"].set_data([ey[-1]], [ez[-1]])
             fk = float(f[-1])
             r = math.hypot(ey[-1], ez[-1])
