@@ -390,6 +390,18 @@ class _Writer:
             im = Image.fromarray(rgb)
             self.frames.append(im if self.kind == ".png" else im.quantize(colors=255, method=Image.Quantize.MEDIANCUT))
 
+    def abort(self) -> None:
+        """Drop the partial file (an error or Ctrl-C while rendering)."""
+        try:
+            if self.kind == ".mp4":
+                self.gen.close()
+        except Exception:
+            pass
+        try:
+            self.tmp.unlink()
+        except OSError:
+            pass
+
     def close(self) -> None:
         from .safeio import fsync_dir, fsync_path
 
@@ -461,13 +473,17 @@ def animate(results_path, out_path, *, fps: float = 20.0, view: str = "all", max
     name = res.get("attrs", {}).get("scenario_name") or res["scenario"].get("name") or results_path.parent.name
     frame = _Frame(spec, series, t, (w, h), view, scene, str(name))
     writer = _Writer(out_path, (w, h), play_fps)
-    for k in idx:
-        img = scene.render(k)
-        if img.shape[:2] != (h, wl):
-            from PIL import Image
+    try:
+        for k in idx:
+            img = scene.render(k)
+            if img.shape[:2] != (h, wl):
+                from PIL import Image
 
-            img = np.asarray(Image.fromarray(img).resize((wl, h)))
-        writer.add(frame.draw(int(k), img))
+                img = np.asarray(Image.fromarray(img).resize((wl, h)))
+            writer.add(frame.draw(int(k), img))
+    except BaseException:
+        writer.abort()
+        raise
     writer.close()
     return {"frames": writer.n, "file": str(out_path), "magnification": scene.mag,
             "times_s": [float(t[k]) for k in idx], "clearance_circles_px": frame.circles(),

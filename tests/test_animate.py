@@ -100,3 +100,21 @@ def test_bad_animate_input_exit_2(results, tmp_path, capsys):
         assert len(err) == 1 and field in err[0], (args, err)
     assert main(["animate", str(tmp_path / "missing.h5")]) == 2
     assert not list(tmp_path.iterdir())
+
+
+def test_failed_render_leaves_no_file(results, tmp_path, monkeypatch):
+    import rotorlanding.animate as an
+
+    calls = {"n": 0}
+    draw = an._Frame.draw
+
+    def failing(self, k, image):
+        calls["n"] += 1
+        if calls["n"] == 2:
+            raise RuntimeError("disk gone")
+        return draw(self, k, image)
+
+    monkeypatch.setattr(an._Frame, "draw", failing)
+    with pytest.raises(RuntimeError):
+        an.animate(results, tmp_path / "a.gif", fps=200, size=(640, 360))
+    assert not list(tmp_path.iterdir())  # neither the target nor its temporary name
