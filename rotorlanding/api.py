@@ -543,6 +543,23 @@ class Landing:
         """Rotor and inner-race speeds [rpm] against time [s] (PNG)."""
         return self._plot("speeds", path)
 
+    def animate(self, path, *, fps: float = 20.0, play_fps: float = 20.0, view: str = "all",
+                max_frames: int | None = None, size: tuple[int, int] = (1280, 720), at: float | None = None) -> dict:
+        """Render the landing (``rotorlanding animate``): ``path`` ending in .mp4 (needs
+        ``pip install 'rotorlanding[video]'``), .gif, or .png (one still at ``at`` [s], default
+        the end). The rotor in 3D (Exudyn's raytracer, no display needed) beside each journal's
+        orbit relative to its inner race with the clearance circle; time [s], speed [rpm] and
+        contact forces [kN] on the frame. ``fps``: frames per simulated second
+        (floor(duration x fps) + 1 frames); ``play_fps``: the movie's frame rate; ``view``:
+        "all", a bearing name or "rotor"; ``size``: (width, height) [px]. Returns
+        {"frames", "file", "magnification", "times_s"}."""
+        from .animate import animate
+
+        with tempfile.TemporaryDirectory() as tmp:
+            res = self.save(Path(tmp) / "results.h5")
+            return animate(res, path, fps=fps, play_fps=play_fps, view=view, max_frames=max_frames,
+                           size=size, at=at)
+
     def __repr__(self) -> str:
         w = self.whirl
         return (f"Landing({self.scenario.name!r}: {self.t[-1]:.4g} s, {len(self.t)} samples, whirl "

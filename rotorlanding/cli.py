@@ -216,11 +216,21 @@ def cmd_validate(args) -> int:
     return 0
 
 
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise InputError("--size", text, "must be WIDTHxHEIGHT in pixels, e.g. 1280x720") from None
+    return w, h
+
+
 def cmd_animate(args) -> int:
     from .animate import animate
 
-    info = animate(args.results, args.out, fps=args.fps, view=args.view, max_frames=args.max_frames)
-    print(f"{info['frames']} frames written to {info['file']} (displacements x{info['magnification']:.0f})")
+    size = _size(args.size)
+    info = animate(args.results, args.out, fps=args.fps, view=args.view, max_frames=args.max_frames,
+                   play_fps=args.play_fps, size=size, at=args.at)
+    print(f"{info['frames']} frame(s) written to {info['file']} (lateral displacements x{info['magnification']:.0f})")
     return 0
 
 
@@ -361,12 +371,19 @@ def build_parser() -> argparse.ArgumentParser:
                                                 "(e.g. scenarios/rig_rotor_first.toml)")
     va.set_defaults(func=cmd_validate)
 
-    an = sub.add_parser("animate", help="render a results.h5 offline with Exudyn's raytracer into a GIF")
+    an = sub.add_parser("animate", help="render a results.h5 offline (Exudyn's raytracer: the rotor in 3D, and "
+                        "the orbits) into an MP4, a GIF or a PNG still")
     an.add_argument("results", help="results.h5 of a rotorlanding run")
-    an.add_argument("--out", default="landing.gif", help="GIF file (default landing.gif)")
-    an.add_argument("--fps", type=float, default=20.0, help="frames per simulated second (default 20)")
-    an.add_argument("--view", default="DE", help="a catcher bearing of the run, e.g. DE or NDE (view along the axis), or rotor (side view)")
+    an.add_argument("--out", default="landing.gif", help="landing.gif, landing.mp4 (needs pip install "
+                    "'rotorlanding[video]') or still.png (one frame at --at); default landing.gif")
+    an.add_argument("--fps", type=float, default=20.0, help="frames per simulated second (default 20): "
+                    "floor(duration x fps) + 1 frames")
+    an.add_argument("--play-fps", type=float, default=20.0, help="frames per second of the movie (default 20)")
+    an.add_argument("--view", default="all", help="all (3D rotor and every bearing's orbit; default), a catcher "
+                    "bearing of the run, e.g. DE (3D and its orbit), or rotor (3D only)")
     an.add_argument("--max-frames", type=int, default=None, help="cap on the number of frames")
+    an.add_argument("--size", default="1280x720", help="frame size WIDTHxHEIGHT in pixels (default 1280x720)")
+    an.add_argument("--at", type=float, default=None, help="time [s] of the still for a .png (default: the last sample)")
     an.set_defaults(func=cmd_animate)
 
     sw = sub.add_parser("sweep", help="run a grid / Monte Carlo sweep of scenario values in parallel")
