@@ -27,6 +27,7 @@ import numpy as np
 from .landing import LandingSpec
 from .mechanisms import axial_potential, dissipation_entries, input_entries, rotor_force
 from .mechanisms import evaluate as _evaluate
+from .thermal_states import summary as thermal_summary
 from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
 
 MECHANISMS = dissipation_entries()
@@ -87,7 +88,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
         except ValueError as err:  # record too short for the analysis window
             whirls[b.name] = {**WhirlResult("none", None, None, 0.0).to_dict(), "note": str(err)}
     name = landing_whirl_bearing(whirls)
-    return {
+    out = {
         "scenario": sc.name,
         "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls},
         "bearings": bearings,
@@ -98,3 +99,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
                   "max_axial_force_n": float(np.max(np.abs(series["axial_force_n"])))},
         "energy": energy_summary(series),
     }
+    thermal = thermal_summary(spec, t, series)
+    if thermal:
+        out["thermal"] = thermal
+    return out
