@@ -35,7 +35,7 @@ drag reads the ball force), and the energy entries are listed (and summed) in re
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
@@ -95,6 +95,8 @@ class Mechanism:
     outputs: tuple[Output, ...] = ()
     post: Callable | None = None        # post(ev, laws) on the stored states (see Evaluation)
     heat: tuple = ()                    # (dissipation entry, route of rotorlanding.thermal_states), bearing scope
+    retune: Callable | None = None      # retune(laws, bearing name, carry) -> laws: the laws at the carried
+                                        # states a coast-down chunk starts from (retuned_spec)
     active: Callable = _always          # active(spec, laws); laws = BearingLaws or RotorLaws
     doc: str = ""
     # a mechanism outside the compiled kernel brings these (empty for the built-in ones):
@@ -308,7 +310,7 @@ def _post_ball_drag(ev: Evaluation, L) -> None:
     """Harris-Palmgren drag on the inner race, eqs 23-27 (load = ball force and face load)."""
     k, pre = ev.kin, ev.bearing.name + "_"
     by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
-    thp = np.array([harris_palmgren_fast(w, math.hypot(y, z), n, L.hp)
+    thp = np.array([harris_palmgren_fast(w, math.hypot(y, z), n + L.drag_axial_preload, L.hp)
                     for w, y, z, n in zip(k["wi"], by, bz, k["n_ax"])])
     ev.out("drag_torque_nm", thp)
     ev.dissipated("ball_drag", -thp * np.asarray(k["wi"]))
@@ -322,7 +324,7 @@ def _post_worn_drag(ev: Evaluation, L) -> None:
                    for w, phi in zip(k["wi"], k["phi_i"])])
     if L.worn_drag_friction > 0:
         by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
-        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n, phi, L.worn)[0]
+        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n + L.drag_axial_preload, phi, L.worn)[0]
                             for w, y, z, n, phi in zip(k["wi"], by, bz, k["n_ax"], k["phi_i"])])
     ev.out("drag_torque_nm", tw)
     ev.dissipated("worn_bearing_drag", -tw * np.asarray(k["wi"]))
@@ -479,6 +481,9 @@ REGISTRY += (
 # the catcher bearing's thermal network (issue 18): a post-processing mechanism with carried states;
 # its law and routing in rotorlanding/thermal_states.py (user_forces/thermal.py's network)
 
+from .thermal_states import ROUTES as THERMAL_ROUTES  # noqa: E402 (the routes' names, no import back)
+
+
 def _post_catcher_thermal(ev: Evaluation, L) -> None:
     from .thermal_states import post_thermal
 
@@ -495,7 +500,10 @@ REGISTRY += (
                                    carried=True)
                             for n in ("sleeve", "inner_ring", "ball_set", "outer_ring", "housing"))
               + (Output("heat_in_j", "J", True, "heat into the bearing's thermal network (cumulative)", carried=True),
-                 Output("heat_lost_j", "J", True, "heat from the network to ambient (cumulative)", carried=True)),
+                 Output("heat_lost_j", "J", True, "heat from the network to ambient (cumulative)", carried=True))
+              + tuple(Output(f"heat_{r}_j", "J", True, f"heat into the network by the {r.replace('_', ' ')} route "
+                             "(cumulative)", carried=True)
+                      for r in THERMAL_ROUTES),
               post=_post_catcher_thermal, active=thermal_active,
               doc="lumped thermal network of the catcher bearing, heated by the bearing's dissipation "
                   "(rotorlanding/thermal_states.py)",
@@ -507,6 +515,65 @@ REGISTRY += (
                       Param("thermal_housing_capacity_j_k", "J/K", 950.0, "housing heat capacity (2 kg steel)"),
                       Param("thermal_width_m", "m", 0.022, "ring width (7212: 22 mm), the sleeve contact length"))),
 )
+
+
+def _post_thermal_feedback(ev: Evaluation, L) -> None:
+    from .thermal_feedback import post_feedback
+
+    post_feedback(ev, L)
+
+
+def _retune_thermal(laws, name, carry):
+    from .thermal_feedback import retune_bearing
+
+    return retune_bearing(laws, name, carry)
+
+
+def thermal_feedback_active(spec, L) -> bool:
+    return L.extra["thermal_axial_mount_stiffness_n_m"] > 0 and thermal_active(spec, L)
+
+
+REGISTRY += (
+    Mechanism("thermal_feedback", "bearing", ("station_y", "station_z", "race_y", "race_z", "outer_y", "outer_z",
+                                              "race_phi"), (), (), (),
+              outputs=(Output("journal_clearance_m", "m", True, "sleeve-bore radial clearance with thermal growth"),
+                       Output("internal_clearance_m", "m", True, "ball set's diametral internal clearance (< 0: preload)"),
+                       Output("thermal_preload_n", "N", True, "axial resultant of the thermal preload of the ball set")),
+              post=_post_thermal_feedback, active=thermal_feedback_active, retune=_retune_thermal,
+              doc="thermal growth -> journal and internal clearance, preload -> ball stiffness and drag load "
+                  "(rotorlanding/thermal_feedback.py)",
+              effect="thermal_feedback", default_on=False,
+              params=(Param("thermal_internal_clearance_m", "m", 20.0e-6,
+                            "cold mounted diametral internal clearance of the ball set (assumed 20 um)"),
+                      Param("thermal_axial_mount_stiffness_n_m", "N/m", 5.0e6,
+                            "axial stiffness holding the rings against the preload (rig: the wave spring axial.k_ws)"),
+                      Param("thermal_runaway_limit_k", "K", 473.15,
+                            "temperature whose crossing with the ball set preloaded is reported as runaway (200 degC)"))),
+)
+
+
+def retuned_spec(spec, carry: dict | None):
+    """``spec`` with each bearing's laws retuned by the active mechanisms' ``retune`` hooks to the
+    carried states (a coast-down chunk's start); ``spec`` itself when nothing changes."""
+    import copy
+
+    if not carry:
+        return spec
+    bearings, changed = [], False
+    for b in spec.bearings:
+        laws = b.laws
+        for m in REGISTRY:
+            if m.retune is not None and m.active(spec, b.laws):
+                laws = m.retune(laws, b.name, carry)
+        if laws is not b.laws:
+            b = replace(b, laws=laws)
+            changed = True
+        bearings.append(b)
+    if not changed:
+        return spec
+    out = copy.copy(spec)
+    out.bearings = bearings
+    return out
 
 
 def heat_routes() -> dict:

@@ -35,10 +35,11 @@ INPUTS = input_entries()
 __all__ = ["MECHANISMS", "INPUTS", "axial_potential", "evaluate", "energy_summary", "summarize", "uniform"]
 
 
-def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
+def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None) -> dict:
     """Time series of forces, torques, powers and energies (SI), keyed by name; the names and
-    units are :func:`rotorlanding.mechanisms.series_units`."""
-    return _evaluate(spec, t, q, v)
+    units are :func:`rotorlanding.mechanisms.series_units`; ``carry``: the carried states' start
+    values (a coast-down chunk; :func:`rotorlanding.mechanisms.evaluate`)."""
+    return _evaluate(spec, t, q, v, carry)
 
 
 def energy_summary(series: dict) -> dict:

@@ -71,6 +71,8 @@ ROUTES = ("sleeve_contact", "face_rub", "ball_contacts", "outer_support")
 FIXED_SHARES = {"ball_contacts": (0.0, 0.25, 0.5, 0.25, 0.0), "outer_support": (0.0, 0.0, 0.0, 0.5, 0.5)}
 NODE_SERIES = tuple(f"temperature_{n}_k" for n in NODE_NAMES)
 HEAT_SERIES = ("heat_in_j", "heat_lost_j")
+ROUTE_SERIES = tuple(f"heat_{r}_j" for r in ROUTES)
+FEEDBACK_SERIES = ("journal_clearance_m", "internal_clearance_m", "thermal_preload_n")
 
 
 def network_for(laws):
@@ -176,6 +178,8 @@ def node_heat_power(ev, laws) -> np.ndarray:
 
 def post_thermal(ev, laws) -> None:
     """The ``catcher_thermal`` mechanism's hook: integrate the bearing's network over the samples."""
+    from .mechanisms import heat_routes
+
     pre = ev.bearing.name + "_"
     net = network_for(laws)
     stepper = ModalStepper(net)
@@ -197,6 +201,12 @@ def post_thermal(ev, laws) -> None:
         ev.out(s, temps[:, j])
     ev.out("heat_in_j", in0 + np.concatenate([[0.0], np.cumsum(heat.sum(axis=1))]))
     ev.out("heat_lost_j", lost0 + np.concatenate([[0.0], np.cumsum(lost)]))
+    # the heat per route (which mechanisms heat the bearing), trapezoid like the ledger
+    routes = heat_routes()
+    for r, name in zip(ROUTES, ROUTE_SERIES):
+        p = sum((ev.bpower[e] for e in ev.bpower if routes[e] == r), np.zeros(len(ev.t)))
+        e0 = carry.get(pre + name, 0.0) if pre + NODE_SERIES[0] in carry else 0.0
+        ev.out(name, e0 + np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * dt)]))
 
 
 def bearing_summary(spec, b, t, series: dict) -> dict:
@@ -214,7 +224,10 @@ def bearing_summary(spec, b, t, series: dict) -> dict:
     dt_max = float(np.max(np.diff(t))) if len(t) > 1 else 0.0
     peak = np.max(temps, axis=0)
     i_peak = int(np.argmax(peak))
+    heat_by_route = {r: float(series[pre + n][-1] - series[pre + n][0]) for r, n in zip(ROUTES, ROUTE_SERIES)
+                     if pre + n in series}
     return {
+        "heat_by_route_j": heat_by_route,
         "max_temperature_degc": {n: float(v - KELVIN_0C) for n, v in zip(NODE_NAMES, peak)},
         "final_temperature_degc": {n: float(v - KELVIN_0C) for n, v in zip(NODE_NAMES, temps[-1])},
         "hottest_node": NODE_NAMES[i_peak],
@@ -223,7 +236,17 @@ def bearing_summary(spec, b, t, series: dict) -> dict:
         "heat_in_j": heat_in, "heat_stored_j": stored, "heat_lost_j": lost,
         "balance_error_relative": abs(heat_in - stored - lost) / heat_in if heat_in > 0 else 0.0,
         "fastest_time_constant_s": tau, "max_interval_s": dt_max, "split_ratio": dt_max / tau,
+        **_feedback(spec, b, t, series),
     }
+
+
+def _feedback(spec, b, t, series) -> dict:
+    from .mechanisms import thermal_feedback_active
+    from .thermal_feedback import summary as feedback_summary
+
+    if not thermal_feedback_active(spec, b.laws):
+        return {}
+    return {"feedback": feedback_summary(t, series, b.name, b.laws)}
 
 
 def summary(spec, t, series: dict) -> dict | None:
@@ -246,3 +269,39 @@ def split_warnings(thermal: dict | None) -> list[str]:
 
 __all__ = ["ModalStepper", "network_for", "node_heat_power", "post_thermal", "bearing_summary", "summary",
            "ROUTES", "NODE_SERIES", "HEAT_SERIES", "KELVIN_0C"]
+
+
+def file_summary(h5, spec) -> dict | None:
+    """:func:`summary` from an open results.h5 (a coast-down's decimated rows): reads the time and
+    the carried thermal series only."""
+    from .mechanisms import thermal_active
+
+    names = [b.name + "_" + s for b in spec.bearings
+             for s in NODE_SERIES + HEAT_SERIES + ROUTE_SERIES + FEEDBACK_SERIES]
+    if not any(thermal_active(spec, b.laws) for b in spec.bearings) or any(f"series/{n}" not in h5 for n in names):
+        return None
+    t = h5["time_s"][()]
+    if len(t) < 2:
+        return None
+    series = {n: h5[f"series/{n}"][()] for n in names}
+    return summary(spec, t, series)
+
+
+def format_lines(thermal: dict | None) -> list[str]:
+    """One line per bearing for the command line's summary."""
+    out = []
+    for name, th in (thermal or {}).items():
+        hot = th["hottest_node"]
+        out.append(f"{name} thermal: hottest {hot.replace('_', ' ')} {th['max_temperature_degc'][hot]:.2f} degC "
+                   f"(ambient {th['ambient_degc']:.1f}); inner ring {th['max_temperature_degc']['inner_ring']:.2f}, "
+                   f"balls {th['max_temperature_degc']['ball_set']:.2f}, outer ring "
+                   f"{th['max_temperature_degc']['outer_ring']:.2f} degC; heat in {th['heat_in_j']:.1f} J = stored "
+                   f"{th['heat_stored_j']:.1f} + lost {th['heat_lost_j']:.2f} J")
+        fb = th.get("feedback")
+        if fb:
+            out.append(f"{name} thermal feedback: internal clearance down to {fb['min_internal_clearance_m'] * 1e6:.2f} um, "
+                       f"journal clearance {fb['min_journal_clearance_m'] * 1e6:.1f} um, preload up to "
+                       f"{fb['max_thermal_preload_n']:.1f} N; " + (f"RUNAWAY at {fb['t_runaway_s']:.3f} s "
+                       f"({fb['runaway_reason']})" if fb["runaway"] else
+                       f"no runaway (limit {fb['runaway_limit_degc']:.0f} degC)"))
+    return out

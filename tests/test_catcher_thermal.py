@@ -114,3 +114,13 @@ def test_every_bearing_dissipation_has_a_heat_route(monkeypatch):
     monkeypatch.setattr(mechanisms, "REGISTRY", mechanisms.REGISTRY + (leak,))
     with pytest.raises(RuntimeError, match="leaky"):
         mechanisms._check_heat_routes()
+
+
+def test_heat_by_route_adds_up_to_the_heat_in(landing):
+    sc, spec, t, q, v, s = landing
+    from rotorlanding.thermal_states import ROUTE_SERIES
+
+    for b in spec.bearing_names:
+        routes = sum(s[f"{b}_{r}"][-1] for r in ROUTE_SERIES)
+        assert routes == pytest.approx(s[f"{b}_heat_in_j"][-1], rel=1e-12)
+        assert s[f"{b}_heat_sleeve_contact_j"][-1] > 0.5 * s[f"{b}_heat_in_j"][-1]  # the landed sleeve dominates
