@@ -172,10 +172,11 @@ def bearing_criteria(spec, b, t, s, limits: Limits, summary: dict) -> tuple[list
     d_rain = rainflow_damage(p_in.tolist(), law, "peak")
     damage = d_roll + d_rain
     allow = allowable_drops(damage)
+    allow = allow if math.isfinite(allow) else None  # no damage: unlimited (JSON has no infinity)
     out.append({"criterion": "allowable drops (fatigue)", "bearing": b.name, "value": allow,
                 "limit": limits.drops_required, "unit": "drops",
-                "margin": allow / limits.drops_required - 1.0 if math.isfinite(allow) else None,
-                "pass": bool(allow >= limits.drops_required),
+                "margin": allow / limits.drops_required - 1.0 if allow is not None else None,
+                "pass": allow is None or allow >= limits.drops_required,
                 "dominant": {"damage_per_drop": damage, "overrolling_damage": d_roll, "rainflow_damage": d_rain,
                              "inner_race_revolutions": float(np.sum(revs)), "p_ref_pa": law.p_ref}})
     return out, {"damage_per_drop": damage, "allowable_drops": allow}
@@ -221,7 +222,7 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
         for name, bs in (summary.get("bearings") or {}).items():
             criteria.append(_max_criterion("contact force", name, bs["max_contact_force_n"], limits.contact_force_n,
                                            "N", {}))
-    allow = min(d["allowable_drops"] for d in damage.values()) if damage else float("inf")
+    allow = min((d["allowable_drops"] for d in damage.values() if d["allowable_drops"] is not None), default=None)
     failed = [c for c in criteria if not c["pass"]]
     return {"scenario": spec.scenario.name, "kind": summary.get("kind", "landing"),
             "complete": bool(summary.get("complete", True)), "t_reached_s": float(t[-1]),
@@ -235,7 +236,7 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
 
 def _fmt(v, unit):
     if v is None:
-        return "-"
+        return "unlimited" if unit == "drops" else "-"
     if isinstance(v, str):
         return v
     if unit == "Pa":
@@ -243,7 +244,7 @@ def _fmt(v, unit):
     if unit == "degC":
         return f"{v:.1f} degC"
     if unit == "drops":
-        return "unlimited" if not math.isfinite(v) else f"{v:.3g}"
+        return f"{v:.3g}"
     if unit == "s":
         return f"{v:.3f} s"
     return f"{v:.4g} {unit}"
@@ -334,22 +335,11 @@ def verdict_from_results(results_h5, out_dir=None, *, overrides=None, plots=True
         summary = json.loads(h5["summary_json"][()])
     v = evaluate(spec, t, s, summary, limits)
     out = Path(out_dir) if out_dir is not None else path.parent
-    atomic_write_text(out / "verdict.json", json.dumps(_finite(v), indent=2, default=_json_default))
+    atomic_write_text(out / "verdict.json", json.dumps(v, indent=2, default=_json_default))
     atomic_write_text(out / "verdict.md", markdown(v))
     if plots and any(thermal_active(spec, b.laws) for b in spec.bearings):
         v["figures"] = [plot_temperatures(spec, t, s, out / "temperatures.png").name]
     return v
-
-
-def _finite(x):
-    """JSON has no infinity: a non-finite number (unlimited allowable drops) is written as null."""
-    if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_finite(v) for v in x]
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    return x
 
 
 def _json_default(x):

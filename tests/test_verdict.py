@@ -122,3 +122,12 @@ def test_verdict_command_on_a_short_landing(tmp_path, capsys):
     assert main(["verdict", str(out / "results.h5"), "--set", "limits.drops_required=0"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "limits.drops_required" in err[0]
+
+
+def test_no_load_is_unlimited_drops_and_valid_json(spec):
+    t = np.linspace(0.0, 0.01, 11)
+    lim = Limits()
+    crit, dmg = vd.bearing_criteria(spec, spec.bearings[0], t, _record(spec, np.zeros(11), t), lim, {})
+    c = next(c for c in crit if c["criterion"].startswith("allowable"))
+    assert dmg["allowable_drops"] is None and c["pass"] and c["margin"] is None
+    json.loads(json.dumps(c, allow_nan=False))  # strict JSON: no Infinity
