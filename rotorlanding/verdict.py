@@ -182,18 +182,27 @@ def bearing_criteria(spec, b, t, s, limits: Limits, summary: dict) -> tuple[list
     return out, {"damage_per_drop": damage, "allowable_drops": allow}
 
 
-def whirl_criterion(t, s, summary: dict, limits: Limits) -> dict:
-    """The landed journal's whirl against whirl_acceptable_below_rpm (landing or coast-down)."""
+def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None = None) -> dict:
+    """The landed journal's whirl against whirl_acceptable_below_rpm (landing or coast-down), with
+    its severity: time whirling and (landing) the orbit amplitude over the radial clearance."""
     rpm = np.abs(np.asarray(s["rotor_speed_rpm"]))
     phases = []
+    severity = {}
     if "whirl_phases" in summary:  # coast-down: per-chunk phases
         for ph in summary["whirl_phases"]:
             if ph["direction"] != "none":
                 phases.append((ph["direction"], ph["t_start_s"], ph.get("frequency_hz_median")))
+        severity["time_whirling_s"] = sum(ph["t_end_s"] - ph["t_start_s"] for ph in summary["whirl_phases"]
+                                          if ph["direction"] != "none")
     else:
         w = summary.get("whirl") or {}
         if w.get("direction", "none") != "none":
             phases.append((w["direction"], w.get("onset_s") or float(t[0]), w.get("frequency_hz")))
+            end = w.get("end_s") if w.get("end_s") is not None else float(t[-1])
+            severity["time_whirling_s"] = float(w.get("persistence") or 0.0) * (end - phases[0][1])
+            c = (clearance or {}).get(w.get("bearing"))
+            if w.get("amplitude_m") is not None and c:
+                severity["amplitude_over_clearance"] = float(w["amplitude_m"]) / c
     worst = None
     for direction, t0, f in phases:
         speed = float(np.interp(t0, t, rpm))
@@ -207,7 +216,7 @@ def whirl_criterion(t, s, summary: dict, limits: Limits) -> dict:
             "value": f"{worst[0]} from {worst[1]:.0f} rpm", "limit": lim, "unit": "rpm", "margin": None,
             "pass": bool(worst[1] < lim),
             "dominant": {"direction": worst[0], "rotor_speed_at_onset_rpm": worst[1], "t_onset_s": worst[2],
-                         "frequency_hz": worst[3]}}
+                         "frequency_hz": worst[3], **severity}}
 
 
 def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
@@ -217,7 +226,7 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
         c, d = bearing_criteria(spec, b, t, s, limits, summary)
         criteria += c
         damage[b.name] = d
-    criteria.append(whirl_criterion(t, s, summary, limits))
+    criteria.append(whirl_criterion(t, s, summary, limits, {b.name: b.params.clearance for b in spec.bearings}))
     if limits.contact_force_n > 0:
         for name, bs in (summary.get("bearings") or {}).items():
             criteria.append(_max_criterion("contact force", name, bs["max_contact_force_n"], limits.contact_force_n,

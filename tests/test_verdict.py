@@ -131,3 +131,17 @@ def test_no_load_is_unlimited_drops_and_valid_json(spec):
     c = next(c for c in crit if c["criterion"].startswith("allowable"))
     assert dmg["allowable_drops"] is None and c["pass"] and c["margin"] is None
     json.loads(json.dumps(c, allow_nan=False))  # strict JSON: no Infinity
+
+
+def test_whirl_criterion_speed_and_severity():
+    """A forward whirl from t = 0.1 s, when the rotor turns 6000 rpm: fails with the default limit
+    (no whirl acceptable), passes when whirl is acceptable below 6500 rpm; severity by hand."""
+    t = np.linspace(0.0, 1.0, 101)
+    s = {"rotor_speed_rpm": 7000.0 - 10000.0 * t}
+    summary = {"whirl": {"direction": "forward", "onset_s": 0.1, "end_s": 0.5, "persistence": 0.5,
+                         "frequency_hz": 60.0, "amplitude_m": 1.5e-4, "bearing": "DE"}}
+    c = vd.whirl_criterion(t, s, summary, Limits(), {"DE": 2e-4})
+    assert not c["pass"] and c["dominant"]["rotor_speed_at_onset_rpm"] == pytest.approx(6000.0)
+    assert c["dominant"]["time_whirling_s"] == pytest.approx(0.2)
+    assert c["dominant"]["amplitude_over_clearance"] == pytest.approx(0.75)
+    assert vd.whirl_criterion(t, s, summary, Limits(whirl_acceptable_below_rpm=6500.0))["pass"]
