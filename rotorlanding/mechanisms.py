@@ -324,7 +324,8 @@ def _post_worn_drag(ev: Evaluation, L) -> None:
                    for w, phi in zip(k["wi"], k["phi_i"])])
     if L.worn_drag_friction > 0:
         by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
-        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n + L.drag_axial_preload, phi, L.worn)[0]
+        fa_pre = L.drag_axial_preload
+        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n + fa_pre, phi, L.worn)[0]
                             for w, y, z, n, phi in zip(k["wi"], by, bz, k["n_ax"], k["phi_i"])])
     ev.out("drag_torque_nm", tw)
     ev.dissipated("worn_bearing_drag", -tw * np.asarray(k["wi"]))

@@ -80,7 +80,8 @@ def state(laws, temps) -> dict:
                                                       x["thermal_axial_mount_stiffness_n_m"])
     dk = 0.75 * g.n_balls * k_n * math.sqrt(delta) * math.cos(angle) ** 2
     return {"journal_clearance": c, "internal_clearance": pd, "ball_preload": q, "axial_preload": fa,
-            "delta_n": delta, "contact_angle_rad": angle, "dk_b1": dk, "sleeve_radius": laws.sleeve_radius * (1.0 + ALPHA * dts)}
+            "delta_n": delta, "contact_angle_rad": angle, "dk_b1": dk,
+            "sleeve_radius": laws.sleeve_radius * (1.0 + ALPHA * dts)}
 
 
 def retune(laws, temps):
