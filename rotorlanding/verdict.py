@@ -221,12 +221,22 @@ def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None 
 
 def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
     """The verdict record (module docstring)."""
-    criteria, damage = [], {}
+    from .mechanisms import thermal_feedback_active
+
+    criteria, damage, not_evaluated = [], {}, []
     for b in spec.bearings:
         c, d = bearing_criteria(spec, b, t, s, limits, summary)
         criteria += c
         damage[b.name] = d
-    criteria.append(whirl_criterion(t, s, summary, limits, {b.name: b.params.clearance for b in spec.bearings}))
+        recorded = ((summary.get("thermal") or {}).get(b.name) or {}).get("feedback")
+        if thermal_feedback_active(spec, b.laws) and not recorded:
+            not_evaluated.append(f"thermal runaway ({b.name}): the run's summary has no thermal record "
+                                 "(unfinished run)")
+    if "whirl_phases" in summary or "whirl" in summary:
+        criteria.append(whirl_criterion(t, s, summary, limits, {b.name: b.params.clearance for b in spec.bearings}))
+    else:
+        not_evaluated.append("whirl: the run's summary has no whirl record (an unfinished coast-down classifies its "
+                             "whirl phases at the end)")
     if limits.contact_force_n > 0:
         for name, bs in (summary.get("bearings") or {}).items():
             criteria.append(_max_criterion("contact force", name, bs["max_contact_force_n"], limits.contact_force_n,
@@ -236,7 +246,7 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
     return {"scenario": spec.scenario.name, "kind": summary.get("kind", "landing"),
             "complete": bool(summary.get("complete", True)), "t_reached_s": float(t[-1]),
             "verdict": "pass" if not failed else "fail",
-            "failed": [f"{c['criterion']} ({c['bearing']})" for c in failed],
+            "failed": [f"{c['criterion']} ({c['bearing']})" for c in failed], "not_evaluated": not_evaluated,
             "allowable_drops": allow, "drops_required": limits.drops_required,
             "limits": {k: {"value": v, "source": SOURCES[k]} for k, v in limits.to_dict().items()},
             "criteria": criteria, "damage": damage,
@@ -274,7 +284,7 @@ def markdown(v: dict) -> str:
              "", f"Allowable drops (fatigue, the weakest bearing): "
              f"{_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']}).",
              "" if v["complete"] else f"\nThe run is INCOMPLETE (reached {v['t_reached_s']:.3f} s): the verdict covers "
-             "only the part simulated.", "",
+             "only the part simulated.", *[f"\nNot evaluated: {x}" for x in v["not_evaluated"]], "",
              "| criterion | bearing | value | limit | margin | result | dominated by |", "|---|---|---|---|---|---|---|"]
     for c in v["criteria"]:
         dom = ", ".join(f"{k} {json.dumps(x) if isinstance(x, dict) else (f'{x:.4g}' if isinstance(x, float) else x)}"
@@ -358,7 +368,9 @@ def _json_default(x):
 
 
 def format_lines(v: dict) -> list[str]:
-    lines = [f"verdict: {v['verdict'].upper()}" + (f" ({', '.join(v['failed'])})" if v["failed"] else ""),
+    lines = [f"verdict: {v['verdict'].upper()}" + (f" ({', '.join(v['failed'])})" if v["failed"] else "")
+             + ("" if v["complete"] else f" [INCOMPLETE run: up to {v['t_reached_s']:.3f} s]"),
+             *[f"not evaluated: {x}" for x in v["not_evaluated"]],
              f"allowable drops (fatigue): {_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']})"]
     for c in v["criteria"]:
         margin = "" if c["margin"] is None else f", margin {_margin(c)}"

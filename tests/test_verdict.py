@@ -145,3 +145,13 @@ def test_whirl_criterion_speed_and_severity():
     assert c["dominant"]["time_whirling_s"] == pytest.approx(0.2)
     assert c["dominant"]["amplitude_over_clearance"] == pytest.approx(0.75)
     assert vd.whirl_criterion(t, s, summary, Limits(whirl_acceptable_below_rpm=6500.0))["pass"]
+
+
+def test_an_unfinished_run_says_what_it_could_not_judge(spec):
+    """The placeholder summary of a running coast-down has no whirl record: the whirl is listed as
+    not evaluated (not passed), and the run as incomplete."""
+    t = np.linspace(0.0, 0.01, 11)
+    v = vd.evaluate(spec, t, _record(spec, np.full(11, 1000.0), t), {"complete": False}, Limits())
+    assert not any(c["criterion"] == "whirl" for c in v["criteria"])
+    assert any(x.startswith("whirl") for x in v["not_evaluated"]) and not v["complete"]
+    assert "INCOMPLETE" in vd.markdown(v) and "Not evaluated: whirl" in vd.markdown(v)
