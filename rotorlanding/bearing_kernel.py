@@ -63,7 +63,7 @@ _njit = numba.njit(cache=True, fastmath=False)
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
  P_YHP, P_C4COT, P_C5, P_WREG2, P_KRIB, P_CRIB, P_ETA, P_COUL, P_MUD, P_CI, P_CO, P_WI, P_WO, P_FACE, P_RUB,
  P_MUAX, P_R1, P_R2, P_VREGAX, P_CLAX, P_DM, P_KCB, P_KWS, P_KHS, P_CAX, P_TW, P_TWPHI, P_WMU, P_WC4, P_WC5,
- P_WWREG2, P_WPHI, P_SIZE) = range(49)
+ P_WWREG2, P_WPHI, P_FAPRE, P_SIZE) = range(50)
 
 
 # the kernel's slot of every BearingLaws field it reads (bools as 0/1; hp fills P_XS..P_WREG2, worn P_WMU..P_WPHI)
@@ -73,7 +73,7 @@ _P_FIELDS = {
     P_DRAG: "ball_drag", P_KRIB: "k_rib", P_CRIB: "c_rib", P_ETA: "eta", P_COUL: "outer_coulomb", P_MUD: "mu_d",
     P_CI: "inner_race_damping", P_CO: "outer_race_damping", P_FACE: "axial_face", P_RUB: "axial_rub",
     P_MUAX: "mu_ax", P_R1: "face_inner_radius", P_R2: "face_outer_radius", P_VREGAX: "v_reg_axial",
-    P_TW: "worn_drag_torque", P_TWPHI: "worn_drag_growth_angle",
+    P_TW: "worn_drag_torque", P_TWPHI: "worn_drag_growth_angle", P_FAPRE: "drag_axial_preload",
 }
 
 
@@ -181,11 +181,11 @@ def bearing_rhs(P, sy, sz, th, x, ry, rz, rphi, oy, oz, vsy, vsz, om, xd, vry, v
         t_race += gi
     by, bz = _ball_force(ry - oy, rz - oz, P[P_KB1], P[P_KB2], vry - voy, vrz - voz, P[P_CB])
     if P[P_DRAG] != 0.0:
-        t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax, P)[0]
+        t_race += _hp(omi, math.sqrt(by * by + bz * bz), f_ax + P[P_FAPRE], P)[0]
     if P[P_TW] != 0.0:
         t_race += _worn_drag(omi, P[P_TW], OMEGA_REG_HP, rphi, P[P_TWPHI])
     if P[P_WMU] != 0.0:
-        t_race += _worn_fr(omi, math.sqrt(by * by + bz * bz), f_ax, rphi, P)[0]
+        t_race += _worn_fr(omi, math.sqrt(by * by + bz * bz), f_ax + P[P_FAPRE], rphi, P)[0]
     hy, hz = _ribbon_force(oy, oz, voy, voz, P[P_KRIB], P[P_CRIB], P[P_ETA], P[P_VREG])
     if P[P_COUL] != 0.0 and f_ax > 0.0:
         ky, kz = _outer_race_friction(voy, voz, f_ax, P[P_MUD], P[P_VREG])
@@ -365,10 +365,10 @@ def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
         fr = math.sqrt(by * by + bz * bz)
         dT_fr = dT_fa = dT_om = 0.0
         if P[P_DRAG] != 0.0:
-            _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax, P)
+            _, dT_fr, dT_fa, dT_om = _hp(omi, fr, f_ax + P[P_FAPRE], P)
         if P[P_WMU] != 0.0:
             # the worn bearing's load-proportional drag: same loads as Harris-Palmgren, plus its growth
-            _, wfr, wfa, wom, wphi = _worn_fr(omi, fr, f_ax, rphi, P)
+            _, wfr, wfa, wom, wphi = _worn_fr(omi, fr, f_ax + P[P_FAPRE], rphi, P)
             dT_fr += wfr
             dT_fa += wfa
             dT_om += wom

@@ -199,6 +199,46 @@ def cmd_coastdown(args) -> int:
     return 0
 
 
+def cmd_verdict(args) -> int:
+    """Run the scenario (a landing, or a coast-down when it has a [coastdown] table) into --out, or
+    take a finished run's results.h5, and write the verdict (verdict.json, verdict.md)."""
+    from .verdict import format_lines, verdict_from_results
+
+    overrides = list(args.set or [])
+    if args.scenario.endswith(".h5"):
+        if args.t_end is not None:
+            raise InputError("--t-end", args.t_end, "applies to a new run, not to a finished results.h5")
+        results, out = Path(args.scenario), Path(args.out) if args.out else Path(args.scenario).parent
+    else:
+        from .config import load_toml
+
+        if args.t_end is not None:
+            overrides.append(f"operating.t_end={args.t_end}")
+        out = Path(args.out or "verdict")
+        if "coastdown" in load_toml(args.scenario):
+            from .coastdown_run import format_summary, load_coastdown, run_coastdown
+
+            scenario, cd = load_coastdown(args.scenario, overrides)
+            summary = run_coastdown(scenario, cd, out, resume=args.resume, overwrite=not args.resume,
+                                    progress=not args.quiet, plots=not args.no_plots)
+        else:
+            from .run import format_summary, run_scenario
+
+            scenario = _load_case(args.scenario, overrides)
+            summary = run_scenario(scenario, out, progress=None if not args.quiet else False, plots=not args.no_plots)
+        print(format_summary(summary))
+        results = out / "results.h5"
+        overrides = []  # already in the stored scenario
+    from .safeio import check_out_dir
+
+    check_out_dir(out)
+    v = verdict_from_results(results, out, overrides=overrides, plots=not args.no_plots)
+    print("\n".join(format_lines(v)))
+    print(f"verdict written to {out}/ (verdict.json, verdict.md" + (", temperatures.png" if v.get("figures") else "")
+          + ")")
+    return 0
+
+
 def cmd_validate(args) -> int:
     from .validate import counts_line, check_line, validate
 
@@ -359,6 +399,15 @@ def build_parser() -> argparse.ArgumentParser:
     _run_options(cd, "override operating.t_end (cap on simulated time) [s]",
                  "override a value, e.g. --set coastdown.stop_speed_rpm=500", "skip coastdown.png", "no progress lines")
     cd.set_defaults(func=cmd_coastdown)
+
+    vd = sub.add_parser("verdict", help="the designer's verdict: contact pressures (ISO 76), temperatures, runaway, "
+                                        "damage per drop and allowable drops, whirl, against [limits]")
+    vd.add_argument("scenario", help="scenario TOML (a coast-down if it has [coastdown]), or a finished results.h5")
+    vd.add_argument("--out", default=None, help="output folder (default ./verdict; for a results.h5 its folder)")
+    vd.add_argument("--resume", action="store_true", help="coast-down: continue the unfinished run in --out")
+    _run_options(vd, "override operating.t_end [s]", "override a value, e.g. --set limits.temperature_degc=100",
+                 "skip the figures", "no progress output")
+    vd.set_defaults(func=cmd_verdict)
 
     va = sub.add_parser("validate", help="run the paper's landings and write the validation report")
     va.add_argument("--out", default="validation", help="output folder (default ./validation)")

@@ -67,12 +67,13 @@ import numpy as np
 from .config import Table, load_toml
 from .errors import InputError
 from .bearing_kernel import contact_normal_forces
-from .mechanisms import dissipation_entries, rotor_force, series_units
+from .mechanisms import carried_series, dissipation_entries, retuned_spec, rotor_force, series_units
 from .postprocess import energy_summary, evaluate, uniform
 from .results import (CUMULATIVE_PREFIXES, Checkpoint, Store, check_resumable, create_file, read_restart, repack,
                       verify_checkpoint)
 from .safeio import WriteError, atomic_write_text, check_out_dir, fault
 from .scenario import Scenario, scenario_from_dict
+from .thermal_states import file_summary as thermal_file_summary, format_lines as format_thermal
 
 FIELDS = ("stop_speed_rpm", "chunk_s", "decimate_every", "fast_force_rate_n_s", "landing_s", "smooth_step")
 
@@ -354,6 +355,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
     commit_every = _commit_every_s(commit_every_s)
     pending, pending_bytes, infos = [], 0, []
     last_commit = time.perf_counter()
+    carried = carried_series(spec.bearing_names)
     with Store(path, "r") as store:
         rs = store.restart()  # the first chunk starts from what is committed in the file
     while True:
@@ -365,7 +367,10 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
         if t_first is None:
             t_first = t0
         t1 = min((k + 1) * cd.chunk_s, t_end)
-        model = build_exudyn(spec, rs["q"], rs["v"])
+        # the laws at the temperatures the chunk starts from (registry retune hooks: thermal feedback;
+        # spec itself when none is active), frozen over the chunk
+        spec_k = retuned_spec(spec, rs["carry"])
+        model = build_exudyn(spec_k, rs["q"], rs["v"])
         # the step is a function of the chunk's start time only, so a resumed run repeats it
         s_k = settings
         if cd.smooth_step is not None and t0 >= cd.landing_s - 1e-12 and cd.smooth_step != settings.step:
@@ -383,10 +388,12 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
         else:
             t[-1], q[-1], v[-1] = t1, qe, ve
         max_buffer = max(max_buffer, len(t))
-        keep, fast = keep_mask(t, contact_normal_forces(spec, q, v), cd, s_k.output_period)
-        whirl = _classify_whirl(spec, t, q, v, t1 - t0) if ok and len(t) > 8 else (0, float("nan"))
+        keep, fast = keep_mask(t, contact_normal_forces(spec_k, q, v), cd, s_k.output_period)
+        whirl = _classify_whirl(spec_k, t, q, v, t1 - t0) if ok and len(t) > 8 else (0, float("nan"))
         t, q, v = t[keep], q[keep], v[keep]
-        series = evaluate(spec, t, q, v)  # on the kept samples only; cumulative from the chunk start
+        # on the kept samples only; cumulative from the chunk start, carried states (temperatures)
+        # from the previous chunk's last row
+        series = evaluate(spec_k, t, q, v, carry=rs["carry"] or None)
         for name, off in rs["offsets"].items():
             series[name] = series[name] + off
         speed_now = abs(v[-1, spec.i_theta]) * 30 / math.pi
@@ -422,7 +429,8 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
         # written and read back unchanged), so it is the state a resume would read from the file
         if ok:
             rs = dict(rs, q=q[-1].copy(), v=v[-1].copy(), t_s=t1, chunks=k + 1, **rec,
-                      offsets={name: float(series[name][-1]) for name in rs["offsets"]})
+                      offsets={name: float(series[name][-1]) for name in rs["offsets"]},
+                      carry={name: float(series[name][-1]) for name in rs["carry"] or carried})
         else:
             rs = dict(rs, stop_reason=reason)
         done = bool(rs["stop_reason"])
@@ -535,6 +543,9 @@ def finish(path: Path, spec, scenario: Scenario, cd: Coastdown, *, plots: bool =
                                        if len(ch[f"{b}_max_contact_force_n"]) else 0.0} for b in spec.bearing_names}
             summary["whirl_phases"] = whirl_phases(ch["t_start_s"], ch["t_end_s"], ch["whirl_direction"],
                                                    ch["whirl_frequency_hz"], ch["rotor_speed_rpm"])
+            thermal = thermal_file_summary(h5, spec)
+            if thermal:
+                summary["thermal"] = thermal
         if not complete and reason == "solver failed":
             summary["message"] = str(h5.attrs["message"])
         summary["units"] = "SI (m, N, s, J); speeds in rpm as named"
@@ -617,6 +628,7 @@ def format_summary(summary: dict) -> str:
         if ph["direction"] != "none":
             f = f" ~{ph['frequency_hz_median']:.1f} Hz" if ph["frequency_hz_median"] else ""
             lines.append(f"whirl: {ph['direction']}{f} from {ph['t_start_s']:.2f} to {ph['t_end_s']:.2f} s")
+    lines += format_thermal(summary.get("thermal"))
     p = summary["performance"]
     lines.append(f"performance: {p['simulated_s']:.2f} s simulated in {p['wall_s']:.1f} s wall (solver "
                  f"{p['solver_wall_s']:.1f} s; {p['wall_s_per_simulated_s']:.2f} s/s), {p['chunks']} chunks of "

@@ -209,6 +209,7 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
     drag, hp = L.ball_drag, L.hp
     worn, worn_phi = L.worn_drag_torque, L.worn_drag_growth_angle
     worn_mu, worn_k = L.worn_drag_friction, L.worn
+    fa_pre = L.drag_axial_preload
     krib, crib, eta = L.k_rib, L.c_rib, L.eta
     coulomb, mu_d = L.outer_coulomb, L.mu_d
     ci, co = L.inner_race_damping, L.outer_race_damping
@@ -237,11 +238,11 @@ def bearing_forces(spec: LandingSpec, b: BearingSpec, tilt: list | None = None):
         # balls: force on the inner race from r = inner - outer
         by, bz = ball_force(ry - oy, rz - oz, kb1, kb2, vry - voy, vrz - voz, cb)
         if drag:
-            t_race += harris_palmgren_fast(omega_i, math.hypot(by, bz), f_ax, hp)
+            t_race += harris_palmgren_fast(omega_i, math.hypot(by, bz), f_ax + fa_pre, hp)
         if worn:
             t_race += worn_drag_torque(omega_i, worn, OMEGA_REG_HP, phi_i, worn_phi)
         if worn_mu:
-            t_race += worn_friction_with_derivatives(omega_i, math.hypot(by, bz), f_ax, phi_i, worn_k)[0]
+            t_race += worn_friction_with_derivatives(omega_i, math.hypot(by, bz), f_ax + fa_pre, phi_i, worn_k)[0]
         hy, hz = ribbon_force(oy, oz, voy, voz, krib, crib, eta, v_reg)
         if coulomb and f_ax > 0.0:
             ky, kz = outer_race_friction(voy, voz, f_ax, mu_d, v_reg)

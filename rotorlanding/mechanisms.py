@@ -35,7 +35,7 @@ drag reads the ball force), and the energy entries are listed (and summed) in re
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
@@ -62,6 +62,7 @@ class Output:
     per_bearing: bool = False
     doc: str = ""
     on_rotor: str = ""
+    carried: bool = False   # a state: a coast-down chunk starts from the series' last stored row
 
 
 @dataclass(frozen=True)
@@ -93,6 +94,9 @@ class Mechanism:
     inputs: tuple[str, ...] = ()        # energy entries: input_<e>_j (work put in)
     outputs: tuple[Output, ...] = ()
     post: Callable | None = None        # post(ev, laws) on the stored states (see Evaluation)
+    heat: tuple = ()                    # (dissipation entry, route of rotorlanding.thermal_states), bearing scope
+    retune: Callable | None = None      # retune(laws, bearing name, carry) -> laws: the laws at the carried
+                                        # states a coast-down chunk starts from (retuned_spec)
     active: Callable = _always          # active(spec, laws); laws = BearingLaws or RotorLaws
     doc: str = ""
     # a mechanism outside the compiled kernel brings these (empty for the built-in ones):
@@ -121,6 +125,8 @@ class Evaluation:
     epot: np.ndarray | None = None
     bearing: object = None                          # the BearingSpec being evaluated
     kin: dict = field(default_factory=dict)         # the bearing's kinematics (lists), see _kinematics
+    bpower: dict = field(default_factory=dict)      # dissipation entry -> W of the current bearing alone
+    carry: dict | None = None                       # carried series -> value the samples start from
 
     def out(self, name: str, values) -> None:
         """Add to a declared series (of the current bearing when per bearing)."""
@@ -128,6 +134,8 @@ class Evaluation:
 
     def dissipated(self, entry: str, values) -> None:
         self.power[entry] += values
+        if self.bearing is not None:
+            self.bpower[entry] = self.bpower.get(entry, 0.0) + values
 
     def work(self, entry: str, values) -> None:
         self.inputs[entry] += values
@@ -302,7 +310,7 @@ def _post_ball_drag(ev: Evaluation, L) -> None:
     """Harris-Palmgren drag on the inner race, eqs 23-27 (load = ball force and face load)."""
     k, pre = ev.kin, ev.bearing.name + "_"
     by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
-    thp = np.array([harris_palmgren_fast(w, math.hypot(y, z), n, L.hp)
+    thp = np.array([harris_palmgren_fast(w, math.hypot(y, z), n + L.drag_axial_preload, L.hp)
                     for w, y, z, n in zip(k["wi"], by, bz, k["n_ax"])])
     ev.out("drag_torque_nm", thp)
     ev.dissipated("ball_drag", -thp * np.asarray(k["wi"]))
@@ -316,7 +324,8 @@ def _post_worn_drag(ev: Evaluation, L) -> None:
                    for w, phi in zip(k["wi"], k["phi_i"])])
     if L.worn_drag_friction > 0:
         by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
-        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n, phi, L.worn)[0]
+        fa_pre = L.drag_axial_preload
+        tw = tw + np.array([worn_friction_with_derivatives(w, math.hypot(y, z), n + fa_pre, phi, L.worn)[0]
                             for w, y, z, n, phi in zip(k["wi"], by, bz, k["n_ax"], k["phi_i"])])
     ev.out("drag_torque_nm", tw)
     ev.dissipated("worn_bearing_drag", -tw * np.asarray(k["wi"]))
@@ -375,7 +384,8 @@ RADIAL_CONTACT = Mechanism(
              Output("normal_force_n", "N", True, "contact normal force F_N (eq 15)"),
              Output("penetration_m", "m", True, "Hertz penetration delta (eq 14)"),
              Output("slip_velocity_m_s", "m/s", True, "slip velocity of the contact point (eq 16)")),
-    post=_post_radial, doc="sleeve / inner-race contact, eqs 10-17")
+    post=_post_radial, heat=(("radial_friction", "sleeve_contact"), ("contact_damping", "sleeve_contact")),
+    doc="sleeve / inner-race contact, eqs 10-17")
 
 REGISTRY: tuple[Mechanism, ...] = (
     # bearing scope (the dissipation entries of both scopes are listed and summed in this order)
@@ -384,26 +394,31 @@ REGISTRY: tuple[Mechanism, ...] = (
               (axial_rub,), ("axial_rub",), ("axial_rub",),
               outputs=(Output("rub_force_y_n", "N", True, "face friction force on the rotor, y", "y"),
                        Output("rub_force_z_n", "N", True, "face friction force on the rotor, z", "z")),
-              post=_post_rub, active=lambda spec, L: L.axial_rub, doc="thrust-face friction, eqs 18-21"),
+              post=_post_rub, active=lambda spec, L: L.axial_rub, heat=(("axial_rub", "face_rub"),),
+              doc="thrust-face friction, eqs 18-21"),
     Mechanism("balls", "bearing", ("race_y", "race_z", "outer_y", "outer_z"), (ball_force,), (), ("ball_damping",),
               outputs=(Output("ball_force_y_n", "N", True, "ball-set force on the inner race, y"),
                        Output("ball_force_z_n", "N", True, "ball-set force on the inner race, z")),
-              post=_post_balls, doc="ball set, eq 22"),
+              post=_post_balls, heat=(("ball_damping", "ball_contacts"),), doc="ball set, eq 22"),
     Mechanism("ball_drag", "bearing", ("race_phi", "x_axial"), (harris_palmgren_fast,), ("ball_drag",),
               ("ball_drag",), outputs=(Output("drag_torque_nm", "N m", True, "drag torque on the inner race"),),
-              post=_post_ball_drag, active=lambda spec, L: L.ball_drag, doc="Harris-Palmgren drag, eqs 23-27"),
+              post=_post_ball_drag, active=lambda spec, L: L.ball_drag, heat=(("ball_drag", "ball_contacts"),),
+              doc="Harris-Palmgren drag, eqs 23-27"),
     Mechanism("worn_bearing_drag", "bearing", ("race_phi", "race_y", "race_z", "outer_y", "outer_z", "x_axial"),
               (worn_drag_torque, worn_friction_with_derivatives), ("worn_bearing_drag",),
               ("worn_bearing_drag",), outputs=(Output("drag_torque_nm", "N m", True, "drag torque on the inner race"),),
               post=_post_worn_drag, active=lambda spec, L: L.worn_drag_torque > 0 or L.worn_drag_friction > 0,
+              heat=(("worn_bearing_drag", "ball_contacts"),),
               doc="worn bearing's drag (docs/paper_corrections.md)"),
     Mechanism("ribbon", "bearing", ("outer_y", "outer_z"), (ribbon_force,), ("ribbon_cross_coupling",),
               ("ribbon_damping", "ribbon_cross_coupling"),
               outputs=(Output("ribbon_force_y_n", "N", True, "ribbon force on the outer race, y"),
                        Output("ribbon_force_z_n", "N", True, "ribbon force on the outer race, z")),
-              post=_post_ribbon, doc="ribbon damper, eqs 28-29"),
+              post=_post_ribbon, heat=(("ribbon_damping", "outer_support"), ("ribbon_cross_coupling", "outer_support")),
+              doc="ribbon damper, eqs 28-29"),
     Mechanism("outer_race_coulomb", "bearing", ("outer_y", "outer_z", "x_axial"), (outer_race_friction,),
               ("outer_race_coulomb",), ("outer_race_coulomb",), post=_post_outer_coulomb,
+              heat=(("outer_race_coulomb", "outer_support"),),
               active=lambda spec, L: L.outer_coulomb, doc="outer race / housing friction, eq 30"),
     # rotor scope
     Mechanism("windage", "rotor", ("theta",), (windage_torque,), ("windage",), ("windage",), post=_post_windage,
@@ -415,7 +430,7 @@ REGISTRY: tuple[Mechanism, ...] = (
               ("rotor_damping",), post=_post_rotor, doc="the flexible rotor body, eq 1"),
     # bearing scope, after the rotor: the races' energies come last in each bearing's sum
     Mechanism("races", "bearing", ("race_y", "race_z", "race_phi", "outer_y", "outer_z"), (), (), ("race_damping",),
-              post=_post_races, doc="races as bodies, eqs 7-9"),
+              post=_post_races, heat=(("race_damping", "outer_support"),), doc="races as bodies, eqs 7-9"),
     # work put in (listed and summed in this order)
     Mechanism("amb_hold", "rotor", ("lateral", "x_axial"), (), (), inputs=("amb",), post=_post_amb,
               doc="AMBs before the drop"),
@@ -454,7 +469,7 @@ def _post_race_windage(ev: Evaluation, L) -> None:
 REGISTRY += (
     Mechanism("race_windage", "bearing", ("race_phi",), (windage_torque,), ("race_windage",), ("race_windage",),
               outputs=(Output("race_windage_torque_nm", "N m", True, "air/grease drag torque on the inner race"),),
-              post=_post_race_windage,
+              post=_post_race_windage, heat=(("race_windage", "ball_contacts"),),
               active=lambda spec, L: L.extra["race_windage_c1"] > 0 or L.extra["race_windage_c2"] > 0,
               doc="drag of the air and grease on the spinning inner race, eq 6's law on the race",
               effect="race_windage", default_on=False,
@@ -462,6 +477,133 @@ REGISTRY += (
                       Param("race_windage_c2", "N m s^2", 0.0, "turbulent drag coefficient of the inner race")),
               force=_race_windage_force, jacobian=_race_windage_jacobian),
 )
+
+
+# the catcher bearing's thermal network (issue 18): a post-processing mechanism with carried states;
+# its law and routing in rotorlanding/thermal_states.py (user_forces/thermal.py's network)
+
+from .thermal_states import ROUTES as THERMAL_ROUTES  # noqa: E402 (the routes' names, no import back)
+
+
+def _post_catcher_thermal(ev: Evaluation, L) -> None:
+    from .thermal_states import post_thermal
+
+    post_thermal(ev, L)
+
+
+def thermal_active(spec, L) -> bool:
+    return L.extra["thermal_ambient_k"] > 0
+
+
+REGISTRY += (
+    Mechanism("catcher_thermal", "bearing", (), (), (), (),
+              outputs=tuple(Output(f"temperature_{n}_k", "K", True, f"{n.replace('_', ' ')} temperature (lumped node)",
+                                   carried=True)
+                            for n in ("sleeve", "inner_ring", "ball_set", "outer_ring", "housing"))
+              + (Output("heat_in_j", "J", True, "heat into the bearing's thermal network (cumulative)", carried=True),
+                 Output("heat_lost_j", "J", True, "heat from the network to ambient (cumulative)", carried=True))
+              + tuple(Output(f"heat_{r}_j", "J", True, f"heat into the network by the {r.replace('_', ' ')} route "
+                             "(cumulative)", carried=True)
+                      for r in THERMAL_ROUTES),
+              post=_post_catcher_thermal, active=thermal_active,
+              doc="lumped thermal network of the catcher bearing, heated by the bearing's dissipation "
+                  "(rotorlanding/thermal_states.py)",
+              effect="catcher_thermal", default_on=True,
+              params=(Param("thermal_ambient_k", "K", 293.15, "ambient (and mounting) temperature"),
+                      Param("thermal_g_ball_set_w_k", "W/K", 0.5, "ball set to each ring (assumed, docs/designer_models.md)"),
+                      Param("thermal_h_outer_housing_w_m2k", "W/(m^2 K)", 1000.0, "outer ring to housing over its OD"),
+                      Param("thermal_g_housing_frame_w_k", "W/K", 2.0, "housing into the machine frame"),
+                      Param("thermal_housing_capacity_j_k", "J/K", 950.0, "housing heat capacity (2 kg steel)"),
+                      Param("thermal_width_m", "m", 0.022, "ring width (7212: 22 mm), the sleeve contact length"))),
+)
+
+
+def _post_thermal_feedback(ev: Evaluation, L) -> None:
+    from .thermal_feedback import post_feedback
+
+    post_feedback(ev, L)
+
+
+def _retune_thermal(laws, name, carry):
+    from .thermal_feedback import retune_bearing
+
+    return retune_bearing(laws, name, carry)
+
+
+def thermal_feedback_active(spec, L) -> bool:
+    return L.extra["thermal_axial_mount_stiffness_n_m"] > 0 and thermal_active(spec, L)
+
+
+REGISTRY += (
+    Mechanism("thermal_feedback", "bearing", ("station_y", "station_z", "race_y", "race_z", "outer_y", "outer_z",
+                                              "race_phi"), (), (), (),
+              outputs=(Output("journal_clearance_m", "m", True, "sleeve-bore radial clearance with thermal growth"),
+                       Output("internal_clearance_m", "m", True, "ball set's diametral internal clearance (< 0: preload)"),
+                       Output("thermal_preload_n", "N", True, "axial resultant of the thermal preload of the ball set")),
+              post=_post_thermal_feedback, active=thermal_feedback_active, retune=_retune_thermal,
+              doc="thermal growth -> journal and internal clearance, preload -> ball stiffness and drag load "
+                  "(rotorlanding/thermal_feedback.py)",
+              effect="thermal_feedback", default_on=False,
+              params=(Param("thermal_internal_clearance_m", "m", 20.0e-6,
+                            "cold mounted diametral internal clearance of the ball set (assumed 20 um)"),
+                      Param("thermal_axial_mount_stiffness_n_m", "N/m", 5.0e6,
+                            "axial stiffness holding the rings against the preload (rig: the wave spring axial.k_ws)"),
+                      Param("thermal_runaway_limit_k", "K", 473.15,
+                            "temperature whose crossing with the ball set preloaded is reported as runaway (200 degC)"))),
+)
+
+
+def retuned_spec(spec, carry: dict | None):
+    """``spec`` with each bearing's laws retuned by the active mechanisms' ``retune`` hooks to the
+    carried states (a coast-down chunk's start); ``spec`` itself when nothing changes."""
+    import copy
+
+    if not carry:
+        return spec
+    bearings, changed = [], False
+    for b in spec.bearings:
+        laws = b.laws
+        for m in REGISTRY:
+            if m.retune is not None and m.active(spec, b.laws):
+                laws = m.retune(laws, b.name, carry)
+        if laws is not b.laws:
+            b = replace(b, laws=laws)
+            changed = True
+        bearings.append(b)
+    if not changed:
+        return spec
+    out = copy.copy(spec)
+    out.bearings = bearings
+    return out
+
+
+def heat_routes() -> dict:
+    """Dissipation entry -> heat route (rotorlanding.thermal_states.ROUTES) of every bearing-scope
+    mechanism."""
+    return {e: r for m in REGISTRY for e, r in m.heat}
+
+
+def carried_series(bearing_names) -> tuple[str, ...]:
+    """Series that are states: a coast-down chunk starts from their last stored row."""
+    names = tuple(o.name for m in REGISTRY if m.scope == "rotor" for o in m.outputs if o.carried)
+    return names + tuple(b + "_" + o.name for b in bearing_names for o in _bearing_outputs() if o.carried)
+
+
+def _check_heat_routes():
+    """Every bearing-scope dissipation entry has a heat route (no heat leaks out of the networks
+    unnoticed), and every route is known."""
+    from .thermal_states import ROUTES
+
+    routes = heat_routes()
+    for m in REGISTRY:
+        if m.scope == "bearing":
+            for e in m.dissipation:
+                if e not in routes:
+                    raise RuntimeError(f"mechanism {m.name}: dissipation entry {e!r} has no heat route (Mechanism.heat)")
+    for e, r in routes.items():
+        if r not in ROUTES:
+            raise RuntimeError(f"heat route {r!r} of {e!r}: must be one of {ROUTES}")
+
 
 #: series of the states themselves (not of a mechanism)
 STATE_OUTPUTS_BEARING = (
@@ -530,19 +672,23 @@ def rotor_force(series: dict, bearing: str) -> tuple:
     return fy, fz
 
 
-def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
+def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None) -> dict:
     """Every series of the schema on the stored states: each active mechanism's ``post`` hook, rotor
-    scope first, then per bearing in registry order; an inactive one leaves its zeros."""
+    scope first, then per bearing in registry order; an inactive one leaves its zeros. ``carry``:
+    the values the carried series (:func:`carried_series`) start from (a coast-down chunk's
+    previous row); None: their initial state."""
     nt = len(t)
     names = list(series_units(spec.bearing_names))
     ev = Evaluation(spec, t, q, v, series={k: np.zeros(nt) for k in names},
                     power={e: np.zeros(nt) for e in dissipation_entries()},
-                    inputs={e: np.zeros(nt) for e in input_entries()}, ekin=np.zeros(nt), epot=np.zeros(nt))
+                    inputs={e: np.zeros(nt) for e in input_entries()}, ekin=np.zeros(nt), epot=np.zeros(nt),
+                    carry=carry)
     for m in REGISTRY:
         if m.scope == "rotor" and m.post is not None and m.active(spec, spec.rotor_laws):
             m.post(ev, spec.rotor_laws)
     for b in spec.bearings:
         ev.bearing = b
+        ev.bpower = {}
         ev.kin = _kinematics(ev, b)
         for m in REGISTRY:
             if m.scope == "bearing" and m.post is not None and m.active(spec, b.laws):
@@ -553,7 +699,7 @@ def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
         # the inner race's centre: the journal's orbit relative to it is what the clearance bounds
         ev.series[pre + "race_y_m"], ev.series[pre + "race_z_m"] = q[:, r], q[:, r + 1]
         ev.series[pre + "race_speed_rpm"] = v[:, r + 2] * 30 / math.pi
-    ev.bearing, ev.kin = None, {}
+    ev.bearing, ev.kin, ev.bpower = None, {}, {}
     out = ev.series
     out["rotor_speed_rpm"] = v[:, spec.i_theta] * 30 / math.pi
     out["axial_position_m"] = q[:, spec.i_axial]
@@ -571,3 +717,6 @@ def _trapz_cum(y: np.ndarray, t: np.ndarray) -> np.ndarray:
     out = np.zeros_like(y)
     out[1:] = np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(t))
     return out
+
+
+_check_heat_routes()

@@ -75,6 +75,9 @@ class BearingLaws:
     # inputs of the registry's mechanisms outside the kernel (mechanisms.Param): key -> value, 0 when
     # the mechanism's effect is off
     extra: dict = field(default_factory=dict)
+    # the thermal preload's axial resultant [N], added to the axial load of the drag laws (Harris-
+    # Palmgren, worn friction); 0 unless the registry's thermal_feedback mechanism retunes the laws
+    drag_axial_preload: float = 0.0
 
 
 @dataclass(frozen=True)

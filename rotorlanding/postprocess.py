@@ -27,6 +27,7 @@ import numpy as np
 from .landing import LandingSpec
 from .mechanisms import axial_potential, dissipation_entries, input_entries, rotor_force
 from .mechanisms import evaluate as _evaluate
+from .thermal_states import summary as thermal_summary
 from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
 
 MECHANISMS = dissipation_entries()
@@ -34,10 +35,11 @@ INPUTS = input_entries()
 __all__ = ["MECHANISMS", "INPUTS", "axial_potential", "evaluate", "energy_summary", "summarize", "uniform"]
 
 
-def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> dict:
+def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None) -> dict:
     """Time series of forces, torques, powers and energies (SI), keyed by name; the names and
-    units are :func:`rotorlanding.mechanisms.series_units`."""
-    return _evaluate(spec, t, q, v)
+    units are :func:`rotorlanding.mechanisms.series_units`; ``carry``: the carried states' start
+    values (a coast-down chunk; :func:`rotorlanding.mechanisms.evaluate`)."""
+    return _evaluate(spec, t, q, v, carry)
 
 
 def energy_summary(series: dict) -> dict:
@@ -87,7 +89,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
         except ValueError as err:  # record too short for the analysis window
             whirls[b.name] = {**WhirlResult("none", None, None, 0.0).to_dict(), "note": str(err)}
     name = landing_whirl_bearing(whirls)
-    return {
+    out = {
         "scenario": sc.name,
         "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls},
         "bearings": bearings,
@@ -98,3 +100,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
                   "max_axial_force_n": float(np.max(np.abs(series["axial_force_n"])))},
         "energy": energy_summary(series),
     }
+    thermal = thermal_summary(spec, t, series)
+    if thermal:
+        out["thermal"] = thermal
+    return out

@@ -102,13 +102,15 @@ def generalized_forces(spec: LandingSpec, t: float, q: np.ndarray, v: np.ndarray
         f[o] -= by
         f[o + 1] -= bz
         if L.ball_drag:
-            f[r + 2] += harris_palmgren_torque(wr, math.hypot(by, bz), n_ax, contact_angle_deg=L.contact_angle_deg,
+            f[r + 2] += harris_palmgren_torque(wr, math.hypot(by, bz), n_ax + L.drag_axial_preload,
+                                               contact_angle_deg=L.contact_angle_deg,
                                                C_s=L.static_load_rating, d_m=L.pitch_diameter, z_hp=L.hp_z,
                                                y_hp=L.hp_y, omega_reg=OMEGA_REG_HP)
         if L.worn_drag_torque:
             f[r + 2] += worn_drag_torque(wr, L.worn_drag_torque, OMEGA_REG_HP, q[r + 2], L.worn_drag_growth_angle)
         if L.worn_drag_friction:
-            f[r + 2] += worn_friction_torque(wr, math.hypot(by, bz), n_ax, friction=L.worn_drag_friction,
+            f[r + 2] += worn_friction_torque(wr, math.hypot(by, bz), n_ax + L.drag_axial_preload,
+                                             friction=L.worn_drag_friction,
                                              contact_angle_deg=L.contact_angle_deg, d_m=L.pitch_diameter,
                                              omega_reg=OMEGA_REG_HP, angle=q[r + 2],
                                              growth_angle=L.worn_drag_growth_angle)

@@ -86,6 +86,7 @@ import numpy as np
 
 from . import __version__, safeio
 from .errors import InputError
+from .mechanisms import carried_series
 from .safeio import WriteError, copy_file, fault, fsync_dir, fsync_path, h5_guard, new_h5, tmp_name, unlink_quietly
 
 if TYPE_CHECKING:
@@ -257,6 +258,8 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_unit
             h5.attrs["t_reached_s"] = 0.0
             h5.attrs["message"] = "running"
             h5.attrs["created_utc"] = _utc()
+            # series that are states (the thermal networks): a chunk starts from their last row
+            h5.attrs["carried_series"] = json.dumps(list(carried_series(bearing_names)))
             h5["scenario_json"] = json.dumps(scenario.raw)
             h5["coastdown_json"] = json.dumps(asdict(cd))
             _resizable(h5, "time_s", (), unit="s")
@@ -341,6 +344,7 @@ class Store:
             raise
         self._ds = {}
         self.cumulative = [k for k in series_names if k.startswith(CUMULATIVE_PREFIXES)]
+        self.carried = [k for k in json.loads(self.h5.attrs.get("carried_series", "[]")) if k in series_names]
         self.row_paths = ["time_s", "states/q", "states/v"] + [f"series/{k}" for k in series_names]
         self.chunk_paths = [f"coastdown/chunks/{k}" for k in chunk_names]
 
@@ -376,6 +380,8 @@ class Store:
         out["v"] = self.r["v"][()]
         n = int(out["n_rows"])
         out["offsets"] = {k: float(self.ds(f"series/{k}")[n - 1]) if n else 0.0 for k in self.cumulative}
+        # the carried states (temperatures) of the last committed row; none before the first chunk
+        out["carry"] = {k: float(self.ds(f"series/{k}")[n - 1]) for k in self.carried} if n else {}
         return out
 
     def _row_sets(self):

@@ -30,6 +30,7 @@ from .postprocess import evaluate, summarize
 from .results import write_results
 from .safeio import WriteError, atomic_write_text, check_out_dir, fault, unlink_quietly
 from .scenario import Scenario
+from .thermal_states import format_lines as format_thermal, split_warnings
 from .whirl import landing_whirl
 
 PROGRESS_MIN_STEPS = 20000
@@ -145,6 +146,7 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
     if err > ENERGY_WARN:
         warnings.append(f"energy balance error {100 * err:.1f} % > {100 * ENERGY_WARN:.0f} %: the time step "
                         f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
+    warnings += split_warnings(summary.get("thermal"))
     summary["warnings"] = warnings
     return series, summary
 
@@ -209,6 +211,7 @@ def format_summary(summary: dict) -> str:
         lines.append(f"energy lost: {e['dissipated_total_j']:.2f} J (" +
                      ", ".join(f"{k} {v:.2f} J" for k, v in top) +
                      f"); balance error {100 * e['balance_error_relative']:.3f} %")
+    lines += format_thermal(summary.get("thermal"))
     for w in summary.get("warnings", []):
         lines.append(f"WARNING: {w}")
     p = summary.get("performance")

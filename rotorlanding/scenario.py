@@ -27,6 +27,8 @@ from pathlib import Path
 
 from .config import Table, deep_merge, get_dotted, load_toml, parse_value, set_dotted, split_override
 from .errors import InputError
+from .limits import FIELDS as LIMIT_FIELDS
+from .limits import limits_from_dict
 from .mechanisms import extra_bearing_params, extra_effects
 from .rotor import Rotor, rotor_from_dict
 
@@ -319,6 +321,7 @@ def _scenario(data: dict, source, name) -> Scenario:
     top.raw("rotor")
     bounds = _bounds(data)
     top.raw("bounds", {})
+    limits_from_dict(top.raw("limits", None))  # validated here (before any run); read by rotorlanding.verdict
     title = top.string("name", name or (Path(source).stem if source else "scenario"))
 
     bt = top.table("bearings")
@@ -592,6 +595,7 @@ def apply_overrides(data: dict, overrides, *, tables: dict | None = None) -> dic
     the input, except an effect switch (a known switch with its default) and a field of an
     optional table named in ``tables`` (table -> its allowed fields, e.g. ``coastdown``), which
     are created; the schema validation afterwards judges the value."""
+    tables = {"limits": LIMIT_FIELDS, **(tables or {})}  # an optional table: --set limits.x=... creates it
     for item in overrides or []:
         key, text = split_override(item)
         head, _, rest = key.partition(".")
