@@ -253,6 +253,13 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
             "units": "SI (Pa, N, s, J); temperatures in degC as named; speeds in rpm"}
 
 
+def _dominant_value(x) -> str:
+    """A 'dominated by' entry as a reader takes it in: 4 significant digits, tables as name value pairs."""
+    if isinstance(x, dict):
+        return "{" + ", ".join(f"{k} {_dominant_value(v)}" for k, v in x.items()) + "}"
+    return f"{x:.4g}" if isinstance(x, float) else str(x)
+
+
 def _fmt(v, unit):
     if v is None:
         return "unlimited" if unit == "drops" else "-"
@@ -287,8 +294,7 @@ def markdown(v: dict) -> str:
              "only the part simulated.", *[f"\nNot evaluated: {x}" for x in v["not_evaluated"]], "",
              "| criterion | bearing | value | limit | margin | result | dominated by |", "|---|---|---|---|---|---|---|"]
     for c in v["criteria"]:
-        dom = ", ".join(f"{k} {json.dumps(x) if isinstance(x, dict) else (f'{x:.4g}' if isinstance(x, float) else x)}"
-                        for k, x in c["dominant"].items() if x is not None)
+        dom = ", ".join(f"{k} {_dominant_value(x)}" for k, x in c["dominant"].items() if x is not None)
         margin = _margin(c)
         lines.append(f"| {c['criterion']} | {c['bearing'] or '-'} | {_fmt(c['value'], c['unit'])} | "
                      f"{_fmt(c['limit'], c['unit']) if c['limit'] is not None else '-'} | {margin} | "
