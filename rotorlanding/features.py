@@ -28,6 +28,11 @@ from .whirl import whirl_analysis
 
 DIRECTION_MISMATCH = 3.0
 MAX_DISTANCE = DIRECTION_MISMATCH
+#: distance charged for a feature one side has and the other cannot produce (the measured race
+#: spins up, the model's never does; or the other way): the largest distance any feature can have,
+#: as for a whirl the model does not reproduce. Charged, not dropped: a feature that silently left
+#: the gap when the model lacks it would hide the clearest sign of a missing effect (issue 20)
+ABSENT_FEATURE_DISTANCE = MAX_DISTANCE
 WHIRL_DIRECTIONS = ("none", "forward", "backward")
 
 #: every feature :func:`extract_features` gives (bearing DE), name -> unit (the name's suffix)
@@ -149,8 +154,9 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
             tr, r = m.series(rk)
             rotor = np.interp(tr, t, s)
             up = np.nonzero((tr >= t_drop) & (r >= 0.9 * rotor))[0]
-            if up.size:
-                f[f"{bearing}_race_spinup_s"] = (float(tr[up[0]] - t_drop), 0.02)
+            # None: the race speed was recorded and never reached 90 % (a measurable absence,
+            # charged against a model whose race does spin up, :data:`ABSENT_FEATURE_DISTANCE`)
+            f[f"{bearing}_race_spinup_s"] = (float(tr[up[0]] - t_drop) if up.size else None, 0.02)
     if m.has("axial_m"):
         t, x = m.series("axial_m")
         sel = t >= t_drop + 0.1
@@ -236,10 +242,14 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
     for name in sorted(measured):
         vm, sm = measured[name]
         vs, ss = simulated.get(name, (None, None))
+        absent = None
         if name == "whirl_direction":
             if name not in simulated:
-                continue
-            d = 0.0 if same_direction else DIRECTION_MISMATCH
+                if vm is None:
+                    continue
+                d, absent = ABSENT_FEATURE_DISTANCE, "model"
+            else:
+                d = 0.0 if same_direction else DIRECTION_MISMATCH
         elif name in ("whirl_frequency_hz", "whirl_onset_s") and not same_direction:
             if dm in (None, "none") or ds is None:
                 continue
@@ -247,9 +257,19 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
             vs = vs if name in simulated else None
         else:
             scale = sm or ss
-            if vm is None or vs is None or not scale:
+            if vm is None and vs is None:
                 continue
-            d = soft_cap(abs(vm - vs) / scale)
-        rows.append({"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
-                     "weight": weights.get(name, 1.0)})
+            if (vm is None) != (vs is None):
+                # one side produces the feature, the other cannot (measured: None = measurable but not
+                # reached, e.g. a race that never spins up; model: missing or None): charged
+                d, absent = ABSENT_FEATURE_DISTANCE, "model" if vs is None else "measurement"
+            else:
+                if not scale:
+                    continue
+                d = soft_cap(abs(vm - vs) / scale)
+        row = {"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
+               "weight": weights.get(name, 1.0)}
+        if absent:
+            row["absent_in"] = absent
+        rows.append(row)
     return rows
