@@ -248,23 +248,40 @@ def cmd_diagnose(args) -> int:
             raise InputError(f"--set {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
     if args.t_end is not None:
         sets.append(f"operating.t_end={args.t_end!r}")
-    clearance, m, meas = measured_for_diagnosis(args.scenario, args.measured, sets, args.time_offset_s)
+    clearance, m, meas, info = measured_for_diagnosis(args.scenario, args.measured, sets, args.time_offset_s)
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
+    params = None if args.parameters is None else \
+        [] if args.parameters.strip() == "none" else [k.strip() for k in args.parameters.split(",") if k.strip()]
     from .effects import CATALOGUE
 
     for c in cands or []:
         if c not in CATALOGUE:
             raise InputError("--candidates", c, f"unknown effect; allowed: {', '.join(CATALOGUE)}")
+    if args.noise_gap is not None and not args.noise_gap > 0:
+        raise InputError("--noise-gap", args.noise_gap, "must be > 0 (omit it to estimate the gate from the model's drops)")
     res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,
-                   workers=args.workers, maxiter=args.maxiter, base_overrides=sets)
+                   workers=args.workers, maxiter=args.maxiter, base_overrides=sets, parameters=params,
+                   noise_gap=args.noise_gap, info=info)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "report.json").write_text(json.dumps(res, indent=2, default=float))
+    from .safeio import atomic_write_text
+
+    atomic_write_text(out / "report.json", json.dumps(res, indent=2, default=float))
     files = write_report(res, out, m if m.channels else None, args.scenario, clearance)
-    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']} "
+    for w in res["warnings"]:
+        print(f"rotorlanding: warning: {w}", file=sys.stderr)
+    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f} (noise gate {res['noise_gate']:.3f}, "
+          f"{res['noise']['source']}); named effect: {res['named_effect']} "
           f"({res['simulations']} simulations, {res['wall_s']:.0f} s)")
+    if res["absent_in_model_before"]:
+        print("  the model cannot produce: " + ", ".join(res["absent_in_model_before"]))
     for n in res["named_effects"]:
         print(f"  {n}: {res['signatures'][n]}")
+    for q in res["named_parameters"]:
+        print(f"  parameter {q['key']}: {q['from']} -> {q['to']:.4g} (bound {q['bound'][0]:g}-{q['bound'][1]:g})")
+    if res["unexplained"]:
+        print(f"  unexplained: the gap {res['gap_after']:.3f} stays above the noise gate; largest in "
+              + ", ".join(r["feature"] + (f" ({r['point']})" if r["point"] else "") for r in res["largest_remaining"]))
     if len(res["points"]) > 1:
         print("  whirl measured / before / after: " + "; ".join(
             f"{p['name']}: {p['whirl_measured']} / {p['whirl_before']} / {p['whirl_after']}" for p in res["points"]))
@@ -382,6 +399,11 @@ def build_parser() -> argparse.ArgumentParser:
                     help="change the model, e.g. --set effects.axial_rub=false (repeatable)")
     dg.add_argument("--t-end", type=float, default=None, help="override operating.t_end of the model [s]")
     dg.add_argument("--maxiter", type=int, default=10, help="search iterations per candidate parameter (default 10)")
+    dg.add_argument("--parameters", default=None,
+                    help="comma-separated [bounds] keys tried as wrong-parameter candidates, or none "
+                         "(default: rotorlanding.diagnose.DEFAULT_PARAMETERS the scenario bounds)")
+    dg.add_argument("--noise-gap", type=float, default=None,
+                    help="noise gate (default: estimated from the model's drops and the record's noise)")
     dg.set_defaults(func=cmd_diagnose)
 
     ca = sub.add_parser("calibrate", help="Monte Carlo search of rig unknowns against the paper's validation data")
