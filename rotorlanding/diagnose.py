@@ -1,21 +1,25 @@
-"""Model-gap diagnosis: which missing effect explains where simulation and measurement disagree.
+"""Model-gap diagnosis: which missing effect, or which wrong parameter, explains where simulation
+and measurement disagree (docs/measured_data.md).
 
 ``diagnose(measured, scenario_path, ...)``:
   a. simulate the model as it is at every operating point (one point for a record; one per
      ``[points.NAME]`` table of a feature table, each with its scenario overrides), extract the
      same features as from the measurement, gap_before = one weighted RMS over the rows of every
-     point (:func:`rotorlanding.features.gap_points`);
-  b. for each candidate effect the model lacks (switched off in its scenario): switch it on and
-     calibrate its parameter within bounds (bounded scalar search on the gap over all points
-     jointly); candidates run in threads that share one process pool for the simulations, so
-     candidates x points simulations keep every worker busy;
-  c. rank by a BIC-like score n ln(gap^2) + k ln(n) (n feature rows, k parameters) and name the best
-     only if the disagreement is above the noise gate (estimated: :func:`_noise_gate`), its score beats
-     the unchanged model by more than 2, and either it shrinks the gap by at least
-     ``min_improvement`` (30 %) or it makes the whirl direction right at some operating point
-     without making it wrong at another (a change of the whirl regime is not a noise effect);
-     otherwise report that no candidate explains the disagreement (named_effect = null);
-  d. ``--max-effects 2`` repeats from the improved model.
+     point (:func:`rotorlanding.features.gap_points`; a feature one side cannot produce is charged
+     ``features.ABSENT_FEATURE_DISTANCE``);
+  b. the noise gate from the data (:func:`_noise_gate`): the model dropped from a 5 um circle with
+     the record's own sensor noise (:func:`sensor_noise`), the 95 % prediction bound of one more
+     member's gap; a user-given drop instant is checked against the detected one;
+  c. candidates: each effect the model lacks (switched on, its parameter calibrated within bounds
+     on the gap over all points jointly; threads sharing one process pool) and each uncertain
+     parameter of the scenario (its ``[bounds]``; screened at both bounds, the closest calibrated);
+  d. rank by a BIC-like score n ln(gap^2) + k ln n (n feature rows, k fitted numbers) and name the
+     best only if the gap is above the noise gate, its score beats the unchanged model by more
+     than 2, and either it shrinks the gap by at least ``min_improvement`` (30 %) or it makes the
+     whirl direction right at some operating point without making it wrong at another;
+  e. ``--max-effects N`` repeats from the improved model, re-fitting everything named so far
+     jointly with the new candidate (:func:`_refit`); at the end the gate of the final model judges
+     what stays unexplained (``explanation`` = "unexplained", with the largest remaining features).
 """
 
 from __future__ import annotations
