@@ -236,7 +236,8 @@ def cmd_diagnose(args) -> int:
 
     from .diagnose import diagnose, measured_for_diagnosis, write_report
 
-    for opt, v in (("--workers", args.workers), ("--maxiter", args.maxiter), ("--max-effects", args.max_effects)):
+    for opt, v in (("--workers", args.workers), ("--maxiter", args.maxiter), ("--max-effects", args.max_effects),
+                   ("--ensemble", args.ensemble)):
         if v < 1:
             raise InputError(opt, v, "must be >= 1")
     sets = list(args.set or [])
@@ -257,11 +258,15 @@ def cmd_diagnose(args) -> int:
     for c in cands or []:
         if c not in CATALOGUE:
             raise InputError("--candidates", c, f"unknown effect; allowed: {', '.join(CATALOGUE)}")
+    if args.ensemble_radius_m is not None and not 0 < args.ensemble_radius_m < clearance:
+        raise InputError("--ensemble-radius-m", args.ensemble_radius_m, f"must be > 0 and below the DE clearance "
+                         f"({clearance:g} m)")
     if args.noise_gap is not None and not args.noise_gap > 0:
         raise InputError("--noise-gap", args.noise_gap, "must be > 0 (omit it to estimate the gate from the model's drops)")
     res = diagnose(meas, args.scenario, clearance=clearance, candidates=cands, max_effects=args.max_effects,
                    workers=args.workers, maxiter=args.maxiter, base_overrides=sets, parameters=params,
-                   noise_gap=args.noise_gap, info=info)
+                   noise_gap=args.noise_gap, info=info, ensemble=args.ensemble,
+                   ensemble_radius_m=args.ensemble_radius_m)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     from .safeio import atomic_write_text
@@ -402,6 +407,11 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--parameters", default=None,
                     help="comma-separated [bounds] keys tried as wrong-parameter candidates, or none "
                          "(default: rotorlanding.diagnose.DEFAULT_PARAMETERS the scenario bounds)")
+    dg.add_argument("--ensemble", type=int, default=1,
+                    help="drops per model variant (from a 5 um circle); features become the ensemble's "
+                         "statistics, a gap smooth in the parameters (default 1: one drop)")
+    dg.add_argument("--ensemble-radius-m", type=float, default=None,
+                    help="radius of the drop circle of --ensemble [m] (default 5e-6, an AMB's position error)")
     dg.add_argument("--noise-gap", type=float, default=None,
                     help="noise gate (default: estimated from the model's drops and the record's noise)")
     dg.set_defaults(func=cmd_diagnose)

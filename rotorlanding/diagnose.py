@@ -106,21 +106,37 @@ class _Simulator:
     pool. Overrides per simulation: the model's ``--set`` values, then the point's own values
     (its speed ...), then the candidate effect and its parameter."""
 
-    def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str]):
+    def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str],
+                 ensemble: int = 1, ensemble_radius_m: float | None = None):
         self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
         self.pool = Pool(workers, blas_threads=None)  # BLAS as before (runner.worker_setup says why)
         self.count = 0
+        # > 1: every model variant is an ensemble of drops from a 5 um circle and its features are
+        # the ensemble's statistics (features.ensemble_features), so the gap does not hinge on one
+        # chaotic trajectory (issue 20, point 1)
+        self.ensemble = ensemble
+        self.radius = ensemble_radius_m
 
     def overrides(self, p: Point, extra: list[str]) -> list[str]:
         return self.base + list(p.overrides) + list(extra)
 
-    def features(self, extras: list[list[str]], noise=None) -> list[list[dict]]:
+    def features(self, extras: list[list[str]], noise=None, single: bool = False) -> list[list[dict]]:
         """Simulated features at every point for each model variant (all submitted at once);
-        ``noise``: sensor noise added to the series (variant i seeded with i)."""
-        jobs = [(self.scenario_path, self.overrides(p, extra), self.clearance, noise, i)
-                for i, extra in enumerate(extras) for p in self.points]
+        ``noise``: sensor noise added to the series (variant i seeded with i); ``single``: one drop
+        per variant even in ensemble mode (the noise gate's members)."""
+        from .ensemble import drop_offsets
+        from .features import ensemble_features
+
+        members = [[]] if single or self.ensemble <= 1 else \
+            drop_offsets(self.ensemble, *([self.radius] if self.radius else []))
+        jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, noise, i)
+                for i, extra in enumerate(extras) for p in self.points for off in members]
         self.count += len(jobs)
         out = self.pool.map(_sim_job, jobs, failures="raise")  # _sim_job turns a failed trial into its row
+        k = len(members)
+        if k > 1:
+            grouped = [out[j * k:(j + 1) * k] for j in range(len(out) // k)]
+            out = [next((m for m in g if "__error__" in m), None) or ensemble_features(g) for g in grouped]
         n = len(self.points)
         return [out[i * n:(i + 1) * n] for i in range(len(extras))]
 
@@ -400,7 +416,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
              min_improvement: float = MIN_STEP_IMPROVEMENT, noise_gap: float | None = None, workers: int = 2,
              maxiter: int = 10, t_drop: float = 0.0, base_overrides: list[str] | None = None,
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
-             sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None) -> dict:
+             sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
+             ensemble: int = 1, ensemble_radius_m: float | None = None) -> dict:
     """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is) or
     a list of :class:`Point` (one per operating point, each with its scenario overrides).
     ``base_overrides``: ``--set`` changes of the model (e.g. ``effects.axial_rub=false``).
@@ -431,7 +448,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             raise InputError("--parameters", k, "not an uncertain parameter of the scenario; allowed: its [bounds] "
                              "keys: " + ", ".join(base.bounds), file=str(scenario_path))
     current_values = _current_values(base, parameters)
-    sim = _Simulator(scenario_path, points, clearance, workers, base_overrides)
+    sim = _Simulator(scenario_path, points, clearance, workers, base_overrides, ensemble=ensemble,
+                     ensemble_radius_m=ensemble_radius_m)
     terms: list[Term] = []
     named, steps, warnings = [], [], []
     try:
@@ -580,7 +598,18 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                         "whirl_measured": p.features.get("whirl_direction", (None,))[0],
                         "whirl_before": d0, "whirl_after": d1}
                        for p, d0, d1 in zip(points, directions_before, current_dirs)],
-            "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
+            "ensemble": ensemble, "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
+
+
+def _between(n: int, radius_m: float | None = None) -> list[list[str]]:
+    from .ensemble import DROP_RADIUS_M
+
+    r = radius_m or DROP_RADIUS_M
+    out = []
+    for k in range(n):
+        a = 2.0 * math.pi * (k + 0.5) / n
+        out.append([f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"])
+    return out
 
 
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
@@ -597,7 +626,11 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     if members < 1:
         return {"gate": NOISE_GAP_MIN, "source": "minimum (no members)", "member_gaps": []}
     gaps = []
-    for sims in sim.features([list(fixed or []) + o for o in drop_offsets(members)], noise=sigma or None):
+    offsets = drop_offsets(members)
+    if sim.ensemble > 1:
+        # single drops between the ensemble's own drop points (half a step round the circle)
+        offsets = _between(members, sim.radius)
+    for sims in sim.features([list(fixed or []) + o for o in offsets], noise=sigma or None, single=True):
         if any("__error__" in s for s in sims):
             continue
         # the member is the "measurement": its own scales

@@ -54,3 +54,44 @@ def test_a_feature_missing_from_the_model_features_is_charged_and_a_shared_absen
     assert math.isclose(g, math.sqrt((ABSENT_FEATURE_DISTANCE ** 2 + d_min ** 2) / 2), rel_tol=1e-12)
     g0, rows0 = gap({"DE_race_spinup_s": (None, 0.02)}, {"DE_race_spinup_s": (None, 0.02)})
     assert rows0 == [] and math.isnan(g0)
+
+
+def test_ensemble_features_are_majority_and_medians():
+    """Features of an ensemble of drops (issue 20, point 1), against hand-computed statistics."""
+    from rotorlanding.features import ensemble_features
+
+    members = [
+        {"whirl_direction": ("forward", None), "whirl_frequency_hz": (60.0, 2.0), "DE_vertical_min_m": (-1e-4, 2e-5),
+         "DE_race_spinup_s": (0.05, 0.02), "DE_first_rebound_m": (1e-5, 1e-5)},
+        {"whirl_direction": ("forward", None), "whirl_frequency_hz": (64.0, 2.0), "DE_vertical_min_m": (-3e-4, 2e-5),
+         "DE_race_spinup_s": (None, 0.02)},
+        {"whirl_direction": ("none", None), "DE_vertical_min_m": (-2e-4, 2e-5), "DE_race_spinup_s": (None, 0.02)},
+        {"whirl_direction": ("forward", None), "whirl_frequency_hz": (80.0, 2.4), "DE_vertical_min_m": (-5e-4, 2e-5),
+         "DE_race_spinup_s": (0.07, 0.02)},
+    ]
+    f = ensemble_features(members)
+    assert f["whirl_direction"] == ("forward", None)
+    assert f["whirl_frequency_hz"] == (68.0, 2.0)                  # mean of 60, 64, 80 (forward members)
+    assert math.isclose(f["DE_vertical_min_m"][0], -2.75e-4)        # mean of -1, -3, -2, -5 (x 1e-4)
+    assert f["DE_vertical_min_m"][1] == 2e-5
+    by = f["__whirl_by_direction__"]
+    assert by["forward"]["share"] == 0.75 and by["none"]["share"] == 0.25 and by["forward"]["whirl_frequency_hz"][0] == 68.0
+    assert f["DE_race_spinup_s"] == (None, 0.02)                   # 2 of 4 reached: not a majority
+    assert "DE_first_rebound_m" not in f                          # 1 of 4 produce it
+    tie = ensemble_features(members[:2] + [members[2], {**members[2]}])
+    assert tie["whirl_direction"] == ("forward", None)            # a tie goes to the whirl class
+
+
+def test_ensemble_whirl_is_charged_by_the_share_of_members_that_miss_it():
+    """Across a whirl threshold the charge follows the share of members that whirl as measured
+    (smooth), not the majority (a jump of 3)."""
+    from rotorlanding.features import DIRECTION_MISMATCH, ensemble_features
+
+    measured = {"whirl_direction": ("forward", None), "whirl_frequency_hz": (65.0, 2.0)}
+    fwd = {"whirl_direction": ("forward", None), "whirl_frequency_hz": (65.0, 2.0)}
+    calm = {"whirl_direction": ("none", None)}
+    for k in range(5):  # 0..4 of 4 members whirl forward at 65 Hz
+        ens = ensemble_features([fwd] * k + [calm] * (4 - k))
+        g, rows = gap(measured, ens)
+        miss = DIRECTION_MISMATCH * (1 - k / 4)
+        assert math.isclose(g, miss, abs_tol=1e-12), (k, rows)   # both rows charge 3 x the missing share
