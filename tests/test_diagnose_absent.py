@@ -95,3 +95,35 @@ def test_ensemble_whirl_is_charged_by_the_share_of_members_that_miss_it():
         g, rows = gap(measured, ens)
         miss = DIRECTION_MISMATCH * (1 - k / 4)
         assert math.isclose(g, miss, abs_tol=1e-12), (k, rows)   # both rows charge 3 x the missing share
+
+
+def test_cli_names_the_feature_the_model_cannot_produce_first(tmp_path, capsys):
+    """Hidden radial friction (mu_rad 0.3, own sensor model): the model without it never spins its
+    race up; the report says so first, and the named effect produces the feature."""
+    import json
+    import sys
+    from pathlib import Path
+
+    from rotorlanding.cli import main
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from sensor_model import write_record
+
+    root = Path(__file__).resolve().parents[1]
+    model = tmp_path / "model.toml"
+    model.write_text(f'include = ["{root / "scenarios" / "landing_7000rpm.toml"}", '
+                     f'"{root / "scenarios" / "rig_rotor_first.toml"}", "{root / "tests" / "known_rig_bearings.toml"}"]\n'
+                     '[effects]\nradial_friction = false\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    csv = tmp_path / "rig.csv"
+    write_record(model, ["effects.radial_friction=true", "contact.mu_rad=0.3"], csv, clearance=C, seed=4)
+    out = tmp_path / "diag"
+    assert main(["diagnose", "--measured", str(csv), "--scenario", str(model), "--out", str(out),
+                 "--candidates", "radial_friction", "--parameters", "none", "--maxiter", "3"]) == 0
+    rep = json.loads((out / "report.json").read_text())
+    assert rep["absent_in_model_before"] == ["DE_race_spinup_s"] and rep["absent_in_model_after"] == []
+    assert rep["named_effect"] == "radial_friction"
+    row = next(r for r in rep["features_before"] if r["feature"] == "DE_race_spinup_s")
+    assert row["simulated"] is None and row["distance"] == ABSENT_FEATURE_DISTANCE and row["measured"] > 0
+    md = (out / "report.md").read_text()
+    assert md.index("First hint") < md.index("Named effect") and "DE_race_spinup_s (absent in the model)" in md
+    assert "the model cannot produce: DE_race_spinup_s" in capsys.readouterr().out
