@@ -62,3 +62,21 @@ def test_without_the_right_candidate_the_report_says_unexplained(heavy_hub, tmp_
     write_report(res, tmp_path, None, model, C)
     md = (tmp_path / "report.md").read_text()
     assert "**Unexplained**" in md and res["largest_remaining"][0]["feature"] in md
+
+
+def test_a_larger_clearance_is_found_as_the_wrong_parameter(tmp_path):
+    """DE clearance 2.6e-4 m on the rig, 2e-4 in the model (the issue: 'rightly not named, but
+    nothing told the user what does explain' it). Measured: named bearings.DE.clearance 2e-4 ->
+    2.5e-4 m, gap 1.84 -> 0.56; screened only at its bounds or on a 5-point grid it was missed
+    (its gap is a V 0.3e-4 wide: 1.84 at 2e-4, 0.09 at 2.6e-4, 1.86 at 3e-4)."""
+    model = tmp_path / "model.toml"
+    model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\nribbon_cross_coupling = false\n'
+                     '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    write_record(model, ["bearings.DE.clearance=2.6e-4"], tmp_path / "rig.csv", clearance=C, seed=11)
+    _, m, meas, info = measured_for_diagnosis(model, tmp_path / "rig.csv", [], None)
+    res = diagnose(meas, model, clearance=C, candidates=["windage", "ribbon_cross_coupling"], workers=2,
+                   maxiter=5, info=info)
+    assert res["named_effect"] is None and res["explanation"] == "parameter", res["steps"]
+    (q,) = res["named_parameters"]
+    assert q["key"] == "bearings.DE.clearance" and q["to"] == pytest.approx(2.6e-4, rel=0.1)
+    assert res["gap_after"] <= 0.5 * res["gap_before"]
