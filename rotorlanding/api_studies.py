@@ -523,7 +523,8 @@ class Diagnosis:
 
 def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: float | None = None,
              candidates=None, max_effects: int = 1, workers: int = 2, maxiter: int = 10,
-             time_offset_s: float | None = None) -> Diagnosis:
+             time_offset_s: float | None = None, parameters=None, noise_gap: float | None = None,
+             ensemble: int = 1) -> Diagnosis:
     """Model-gap diagnosis: which effect the model lacks explains where it and a measurement
     disagree (``rotorlanding diagnose``: the same code and files, ``out_dir``/report.json,
     report.md, overlay.png or features.png).
@@ -542,6 +543,11 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
         max_effects: how many effects to name in turn (>= 1).
         workers: worker processes (>= 1); maxiter: search iterations per parameter (>= 1).
         time_offset_s: the drop instant in the record's clock [s] (default: detected).
+        parameters: scenario keys tried as wrong parameters beside the effects (``--parameters``;
+            None: the default list, []: none).
+        noise_gap: the gap below which a disagreement is noise (``--noise-gap``; None: estimated
+            from the model's drops with the record's noise).
+        ensemble: drops per feature evaluation (``--ensemble``; 1: one drop).
 
     Returns a :class:`Diagnosis` (``.named_effect``, ``.gap_before`` / ``.gap_after``,
     ``.calibrated``, ``.plot_features()``); its report equals the command's on the same input
@@ -567,5 +573,6 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
     run_diagnose(str(scenario_path), str(measured), out_dir, sets=_override_items(set or {}),
                  t_end=_seconds("t_end", t_end),
                  candidates=candidates, max_effects=max_effects, workers=workers, maxiter=maxiter,
-                 time_offset_s=time_offset_s, cli_names=False)
+                 time_offset_s=time_offset_s, parameters=parameters, noise_gap=noise_gap, ensemble=ensemble,
+                 cli_names=False)
     return Diagnosis(out_dir)

@@ -314,14 +314,28 @@ def cmd_diagnose(args) -> int:
     from .diagnose_run import run_diagnose
 
     cands = [c.strip() for c in args.candidates.split(",")] if args.candidates else None
+    params = None if args.parameters is None else \
+        [] if args.parameters.strip() == "none" else [k.strip() for k in args.parameters.split(",") if k.strip()]
     res, files = run_diagnose(args.scenario, args.measured, args.out, sets=args.set or [], t_end=args.t_end,
                               candidates=cands, max_effects=args.max_effects, workers=args.workers,
-                              maxiter=args.maxiter, time_offset_s=args.time_offset_s)
+                              maxiter=args.maxiter, time_offset_s=args.time_offset_s, parameters=params,
+                              noise_gap=args.noise_gap, ensemble=args.ensemble,
+                              ensemble_radius_m=args.ensemble_radius_m)
     out = args.out
-    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f}; named effect: {res['named_effect']} "
+    for w in res["warnings"]:
+        print(f"rotorlanding: warning: {w}", file=sys.stderr)
+    print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f} (noise gate {res['noise_gate']:.3f}, "
+          f"{res['noise']['source']}); named effect: {res['named_effect']} "
           f"({res['simulations']} simulations, {res['wall_s']:.0f} s)")
+    if res["absent_in_model_before"]:
+        print("  the model cannot produce: " + ", ".join(res["absent_in_model_before"]))
     for n in res["named_effects"]:
         print(f"  {n}: {res['signatures'][n]}")
+    for q in res["named_parameters"]:
+        print(f"  parameter {q['key']}: {q['from']} -> {q['to']:.4g} (bound {q['bound'][0]:g}-{q['bound'][1]:g})")
+    if res["unexplained"]:
+        print(f"  unexplained: the gap {res['gap_after']:.3f} stays above the noise gate; largest in "
+              + ", ".join(r["feature"] + (f" ({r['point']})" if r["point"] else "") for r in res["largest_remaining"]))
     if len(res["points"]) > 1:
         print("  whirl measured / before / after: " + "; ".join(
             f"{p['name']}: {p['whirl_measured']} / {p['whirl_before']} / {p['whirl_after']}" for p in res["points"]))
@@ -462,6 +476,16 @@ def build_parser() -> argparse.ArgumentParser:
                     help="change the model, e.g. --set effects.axial_rub=false (repeatable)")
     dg.add_argument("--t-end", type=float, default=None, help="override operating.t_end of the model [s]")
     dg.add_argument("--maxiter", type=int, default=10, help="search iterations per candidate parameter (default 10)")
+    dg.add_argument("--parameters", default=None,
+                    help="comma-separated [bounds] keys tried as wrong-parameter candidates, or none "
+                         "(default: rotorlanding.diagnose_run.DEFAULT_PARAMETERS the scenario bounds)")
+    dg.add_argument("--ensemble", type=int, default=1,
+                    help="drops per model variant (from a 5 um circle); features become the ensemble's "
+                         "statistics, a gap smooth in the parameters (default 1: one drop)")
+    dg.add_argument("--ensemble-radius-m", type=float, default=None,
+                    help="radius of the drop circle of --ensemble [m] (default 5e-6, an AMB's position error)")
+    dg.add_argument("--noise-gap", type=float, default=None,
+                    help="noise gate (default: estimated from the model's drops and the record's noise)")
     dg.set_defaults(func=cmd_diagnose)
 
     ca = sub.add_parser("calibrate", help="Monte Carlo search of rig unknowns against the paper's validation data")

@@ -28,6 +28,11 @@ from .whirl import whirl_analysis
 
 DIRECTION_MISMATCH = 3.0
 MAX_DISTANCE = DIRECTION_MISMATCH
+#: distance charged for a feature one side has and the other cannot produce (the measured race
+#: spins up, the model's never does; or the other way): the largest distance any feature can have,
+#: as for a whirl the model does not reproduce. Charged, not dropped: a feature that silently left
+#: the gap when the model lacks it would hide the clearest sign of a missing effect (issue 20)
+ABSENT_FEATURE_DISTANCE = MAX_DISTANCE
 WHIRL_DIRECTIONS = ("none", "forward", "backward")
 
 #: every feature :func:`extract_features` gives (bearing DE), name -> unit (the name's suffix)
@@ -149,8 +154,9 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
             tr, r = m.series(rk)
             rotor = np.interp(tr, t, s)
             up = np.nonzero((tr >= t_drop) & (r >= 0.9 * rotor))[0]
-            if up.size:
-                f[f"{bearing}_race_spinup_s"] = (float(tr[up[0]] - t_drop), 0.02)
+            # None: the race speed was recorded and never reached 90 % (a measurable absence,
+            # charged against a model whose race does spin up, :data:`ABSENT_FEATURE_DISTANCE`)
+            f[f"{bearing}_race_spinup_s"] = (float(tr[up[0]] - t_drop) if up.size else None, 0.02)
     if m.has("axial_m"):
         t, x = m.series("axial_m")
         sel = t >= t_drop + 0.1
@@ -158,6 +164,57 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
             f["axial_mean_m"] = (float(np.mean(x[sel])), 2e-5)
             f["axial_oscillation_m"] = (float(np.std(x[sel])), 1e-5)
     return f
+
+
+#: key of an ensemble's features holding, per whirl direction, the share of members and their
+#: median whirl frequency and onset (not a feature: :func:`_rows` reads it for the whirl rows)
+WHIRL_SHARES = "__whirl_by_direction__"
+
+
+def ensemble_features(members: list[dict]) -> dict:
+    """The features of an ensemble of drops (issue 20, point 1: a gap that does not hinge on one
+    chaotic trajectory): the whirl direction by majority (ties to the whirl class,
+    ``ensemble._majority``; per direction the share of members, :data:`WHIRL_SHARES`), whirl
+    frequency and onset the mean over the members of that class, every other feature the mean of
+    the members that have a value; a feature most members do not produce is absent (None if most
+    recorded it as not reached). Scales: the median scale. The mean, not the median: a rattling
+    landing's members fall into two or more regimes (a high bounce or none), and the median jumps
+    from one regime to the other where the mean follows the share smoothly."""
+    from collections import Counter
+    from statistics import mean, median
+
+    from .ensemble import _majority
+
+    out: dict = {}
+    dirs = [m["whirl_direction"][0] for m in members if "whirl_direction" in m]
+    if dirs:
+        out["whirl_direction"] = (_majority(Counter(dirs)), None)
+        # per direction: the share of members and their median frequency / onset, so the gap can
+        # charge a direction by the share of members that miss it (smooth across a whirl threshold)
+        by = {}
+        for d, k in Counter(dirs).items():
+            same = [m for m in members if m.get("whirl_direction", (None,))[0] == d]
+            entry = {"share": k / len(dirs)}
+            for name in ("whirl_frequency_hz", "whirl_onset_s"):
+                have = [m[name] for m in same if name in m and m[name][0] is not None]
+                if have:
+                    entry[name] = (mean(v for v, _ in have), median(sc for _, sc in have))
+            by[d] = entry
+        out[WHIRL_SHARES] = by
+    names = sorted({k for m in members for k in m} - {"whirl_direction", WHIRL_SHARES})
+    for name in names:
+        pool = members
+        if name in ("whirl_frequency_hz", "whirl_onset_s"):
+            pool = [m for m in members if m.get("whirl_direction", (None,))[0] == out.get("whirl_direction", (None,))[0]]
+        have = [m[name] for m in pool if name in m]
+        vals = [v for v, _ in have if v is not None]
+        if 2 * len(have) <= len(pool) and name not in ("whirl_frequency_hz", "whirl_onset_s"):
+            continue  # most members do not produce it
+        if not have:
+            continue
+        scale = median(sc for _, sc in have) if all(sc is not None for _, sc in have) else None
+        out[name] = (mean(vals) if 2 * len(vals) > len(have) else None, scale)
+    return out
 
 
 def _unit_hint(name: str) -> str:
@@ -233,13 +290,37 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
     dm = measured.get("whirl_direction", (None,))[0]
     ds = simulated.get("whirl_direction", (None,))[0]
     same_direction = dm == ds
+    shares = simulated.get(WHIRL_SHARES)
     for name in sorted(measured):
+        if name == WHIRL_SHARES:
+            continue
         vm, sm = measured[name]
         vs, ss = simulated.get(name, (None, None))
+        absent = None
+        if shares is not None and dm is not None and name in ("whirl_direction", "whirl_frequency_hz", "whirl_onset_s"):
+            # an ensemble: charge the share of members that miss the measured direction, and the
+            # frequency / onset of the members that whirl that way (smooth across a whirl threshold)
+            entry = shares.get(dm, {"share": 0.0})
+            miss = 1.0 - entry["share"]
+            if name == "whirl_direction":
+                d, vs = DIRECTION_MISMATCH * miss, ds
+            elif dm == "none":
+                continue
+            else:
+                got = entry.get(name)
+                vs = got[0] if got else None
+                scale = sm or (got[1] if got else None)
+                d = DIRECTION_MISMATCH * miss + (entry["share"] * soft_cap(abs(vm - vs) / scale) if got and scale else 0.0)
+            rows.append({"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
+                         "weight": weights.get(name, 1.0), "share": entry["share"]})
+            continue
         if name == "whirl_direction":
             if name not in simulated:
-                continue
-            d = 0.0 if same_direction else DIRECTION_MISMATCH
+                if vm is None:
+                    continue
+                d, absent = ABSENT_FEATURE_DISTANCE, "model"
+            else:
+                d = 0.0 if same_direction else DIRECTION_MISMATCH
         elif name in ("whirl_frequency_hz", "whirl_onset_s") and not same_direction:
             if dm in (None, "none") or ds is None:
                 continue
@@ -247,9 +328,19 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
             vs = vs if name in simulated else None
         else:
             scale = sm or ss
-            if vm is None or vs is None or not scale:
+            if vm is None and vs is None:
                 continue
-            d = soft_cap(abs(vm - vs) / scale)
-        rows.append({"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
-                     "weight": weights.get(name, 1.0)})
+            if (vm is None) != (vs is None):
+                # one side produces the feature, the other cannot (measured: None = measurable but not
+                # reached, e.g. a race that never spins up; model: missing or None): charged
+                d, absent = ABSENT_FEATURE_DISTANCE, "model" if vs is None else "measurement"
+            else:
+                if not scale:
+                    continue
+                d = soft_cap(abs(vm - vs) / scale)
+        row = {"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
+               "weight": weights.get(name, 1.0)}
+        if absent:
+            row["absent_in"] = absent
+        rows.append(row)
     return rows

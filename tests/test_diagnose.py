@@ -90,8 +90,18 @@ def test_similar_signatures_told_apart(tmp_path, hidden, value):
     assert res["gap_after"] <= 0.5 * res["gap_before"]
 
 
+# issue 20: the noise gate is measured now (diagnose._noise_gate). On this rig the model without
+# ribbon cross-coupling, dropped from 4 points of a 5 um circle, differs from its centred drop by gaps
+# of 0.04-0.38 (gate, the 95 % prediction bound: 0.61); ribbon cross-coupling at eta 0.4 leaves a gap
+# of 0.48, inside it. The fit that named it under the old constant gate 0.3 landed on eta 0.07 for the
+# true 0.4 (a needle of a chaotic landing's gap, not a recovery). Kept as strict expected failures
+# until the features are ensemble statistics (issue 20, point 1): if they pass, the gate or the case moved.
+RIBBON_WITHIN_NOISE = pytest.mark.xfail(strict=True, reason="ribbon cross-coupling at eta 0.4: gap 0.48 within the "
+                                        "measured noise gate 0.55-0.61 of this chaotic landing (issue 20)")
+
+
 @pytest.mark.parametrize("hidden, value, thrust", [
-    ("ribbon_cross_coupling", 0.4, False),
+    pytest.param("ribbon_cross_coupling", 0.4, False, marks=RIBBON_WITHIN_NOISE),
     ("radial_friction", 0.3, False),
     ("axial_rub", 0.3, True),
     ("outer_race_coulomb", 0.3, True),
@@ -114,7 +124,11 @@ def test_more_hidden_effects_named(tmp_path, hidden, value, thrust):
     assert res["gap_after"] <= 0.5 * res["gap_before"]
 
 
+@RIBBON_WITHIN_NOISE
 def test_two_missing_effects_found_with_max_effects_2(tmp_path):
+    """Windage is named (gap 0.99 -> 0.46, -54 %); the ribbon part left after it (0.46) is below the
+    measured gate 0.55 of the model as given, so it is not named (it would take the gap to 0.16).
+    The pair of similar size found by the joint re-fit: tests/test_diagnose_refit.py."""
     from rotorlanding.benchdata import make_hidden_effect_data
     from rotorlanding.features import extract_features
     from rotorlanding.measured import detect_drop, load_measurement

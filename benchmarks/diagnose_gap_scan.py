@@ -1,0 +1,74 @@
+"""Is the diagnose gap smooth in a parameter? (issue 20, point 1: the needle landscape)
+
+A "measured" landing from our own sensor model (tests/sensor_model.py: 4 kHz, random phase, 1 um /
+2 rpm noise, pre-trigger) of the known rig with radial friction mu_rad = 0.22, against the same model
+at a scan of mu_rad: the gap of one drop per value (the features of one chaotic trajectory) and of
+an ensemble per value (``diagnose --ensemble N --ensemble-radius-m R``: features as means over drops
+from a circle). Prints both scans and the number of interior local minima of each; writes JSON
+(atomically) with --out.
+
+usage: python benchmarks/diagnose_gap_scan.py [--mu 0.05,0.1,...] [--ensemble 8] [--radius-m 3e-5]
+       [--workers 2] [--out scan.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+C = 2e-4
+KNOWN_RIG = (f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}", '
+             f'"{ROOT / "scenarios" / "rig_rotor_first.toml"}", '
+             f'"{ROOT / "tests" / "known_rig_bearings.toml"}"]')
+
+
+def local_minima(g: list[float]) -> int:
+    return sum(1 for i in range(1, len(g) - 1) if g[i] < g[i - 1] and g[i] < g[i + 1])
+
+
+def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22, t_end: float = 0.3) -> dict:
+    from sensor_model import write_record
+
+    from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis
+
+    with tempfile.TemporaryDirectory() as tmp:
+        model = Path(tmp) / "model.toml"
+        model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\n[operating]\nspeed_rpm = 7000.0\nt_end = {t_end!r}\n')
+        write_record(model, [f"contact.mu_rad={truth!r}"], Path(tmp) / "rig.csv", clearance=C, seed=3)
+        _, _, meas, _ = measured_for_diagnosis(model, Path(tmp) / "rig.csv", [], None)
+        out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m}
+        for label, n in (("single", 1), ("ensemble", ensemble)):
+            sim = _Simulator(model, [Point("", [], meas)], C, workers, [], ensemble=n, ensemble_radius_m=radius_m)
+            try:
+                out[label] = [r[0] for r in sim.gaps([[f"contact.mu_rad={mu!r}"] for mu in mus])]
+            finally:
+                sim.close()
+            out[label + "_local_minima"] = local_minima(out[label])
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--mu", default="0.05,0.1,0.15,0.2,0.22,0.25,0.3,0.4,0.5")
+    ap.add_argument("--ensemble", type=int, default=8)
+    ap.add_argument("--radius-m", type=float, default=3e-5)
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args(argv)
+    res = scan([float(x) for x in a.mu.split(",")], a.ensemble, a.radius_m, a.workers)
+    for label in ("single", "ensemble"):
+        print(f"{label:8s}: " + " ".join(f"{g:.2f}" for g in res[label]) + f"  (local minima {res[label + '_local_minima']})")
+    if a.out:
+        from rotorlanding.safeio import atomic_write_text
+
+        atomic_write_text(a.out, json.dumps(res, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

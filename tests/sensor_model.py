@@ -1,0 +1,33 @@
+"""A sensor model of our own for the diagnose tests (issue 20): not the project's benchdata
+generator. A simulated landing is sampled by a data logger at its own rate with a random phase,
+after a pre-trigger stretch (the rotor levitated at its centre, speeds constant), with white noise
+per channel (displacement, speed), the drop at a known instant of the logger's clock; channels
+can be left out. Written as a CSV the diagnose command reads."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorlanding.diagnose_run import _simulate_features
+
+CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm")
+
+
+def write_record(scenario, overrides, csv, *, clearance, seed=0, fs_hz=4000.0, noise_m=1.0e-6, noise_rpm=2.0,
+                 pre_trigger_s=0.2, drop_at_s=3.0, channels=CHANNELS):
+    """Simulate ``scenario`` with ``overrides`` and write what the logger saw; returns the drop
+    instant in the logger's clock (the truth)."""
+    rng = np.random.default_rng(seed)
+    _, m = _simulate_features(scenario, list(overrides), clearance, with_series=True)
+    t_sim = m.series("DE_z_m")[0]
+    phase = rng.uniform(0.0, 1.0 / fs_hz)
+    t = np.arange(-pre_trigger_s + phase, t_sim[-1], 1.0 / fs_hz)
+    cols = [t + drop_at_s]
+    for name in channels:
+        ts, v = m.series(name)
+        before = 0.0 if name.endswith("_m") else float(v[0])  # levitated at the centre, speeds as at the drop
+        vu = np.where(t < ts[0], before, np.interp(t, ts, v))
+        cols.append(vu + rng.normal(0.0, noise_m if name.endswith("_m") else noise_rpm, t.size))
+    np.savetxt(csv, np.column_stack(cols), delimiter=",", header=",".join(("time_s",) + tuple(channels)),
+               comments="")
+    return drop_at_s
