@@ -12,59 +12,79 @@ usage: python benchmarks/adaptive_step_probe.py SCENARIO.toml (fixedH | adaptive
 prints one JSON line: wall s per simulated s, steps, rejected steps, Newton iterations, whirl class,
 frequency and onset, peak contact force. Findings: docs/performance.md (issue 21).
 """
-import sys, time, json, numpy as np, exudyn as exu
+import json
+import sys
+import time
+
+import exudyn as exu
+import numpy as np
+
 from rotorlanding.scenario import load_scenario
 from rotorlanding.landing import build_spec
 from rotorlanding import exudyn_model as em
 from rotorlanding.run import build_summary
-path, mode, t_end = sys.argv[1], sys.argv[2], float(sys.argv[3])
-tol = float(sys.argv[4]) if len(sys.argv) > 4 else 1e-7
-hmax = float(sys.argv[5]) if len(sys.argv) > 5 else 2e-4
-sets = [f"operating.t_end={t_end}"] + sys.argv[6:]
-sc = load_scenario(path, sets)
-spec = build_spec(sc)
-m = em.build_exudyn(spec)
-st_ = em.SolverSettings.from_spec(spec)
-rejects = [0]
-if mode.startswith("fixed"):
-    st_.step = float(mode[5:])
-    st_.output_period = max(st_.output_period, st_.step)
-else:
-    st_.step = hmax
-    mbs = m.mbs; sd = mbs.systemData
-    SOS = exu.ConfigurationType.StartOfStep
-    nl = spec.n_lat
-    # error scale per coordinate: lateral/race positions tol [m]; spin angle / axial: tol too
-    def post(mbs_, t):
-        it = mbs.sys['dynamicSolver'].it
-        h = it.currentStepSize
-        a1 = sd.GetODE2Coordinates_tt(); a0 = sd.GetODE2Coordinates_tt(SOS)
-        err = (h * h / 6.0) * np.abs(a1 - a0)
-        err[spec.i_theta] = 0.0
-        e = err.max() / tol
-        if e > 1.0 and h > 2e-6:
-            rejects[0] += 1
-            return [0.0, max(h * 0.2, h * 0.9 * e ** (-1.0 / 3.0), 1e-6)]
-        return [0.0, -1.0]
-    mbs.SetPostNewtonUserFunction(post)
-ss = st_.apply(exu, 0.0, sc.t_end)
-if not mode.startswith("fixed"):
-    ti = ss.timeIntegration
-    ti.discontinuous.useRecommendedStepSize = True
-    ti.discontinuous.iterationTolerance = 1e10
-    ti.discontinuous.maxIterations = 1
-    ti.adaptiveStepRecoverySteps = 5
-    ti.minimumStepSize = 1e-7
-import exudyn as exu
-exu.config.suppressWarnings = True
-w0 = time.perf_counter()
-res = exu.SolveDynamic(m.mbs, ss)
-wall = time.perf_counter() - w0
-it = m.mbs.sys['dynamicSolver'].it
-stats = {"wall_s": wall, "steps": int(it.currentStepIndex), "newton_iterations": int(it.newtonStepsCount), "jacobians": int(it.newtonJacobiCount), "complete": bool(res is not False), "message": "", "simulated_s": sc.t_end}
-t, q, v = em.collect(m)
-_, s = build_summary(sc, spec, t, q, v, stats)
-w = s["whirl"]
-print(json.dumps({"mode": mode, "tol": tol, "s_per_s": wall / sc.t_end, "steps": stats["steps"], "rejects": rejects[0],
-                  "it": stats["newton_iterations"], "whirl": w.get("direction"), "hz": w.get("frequency_hz"), "onset": w.get("onset_s"),
-                  "peak": max(b["max_contact_force_n"] for b in s["bearings"].values()), "energy_err": s.get("energy", {}).get("balance_error")}))
+
+
+def probe(path, mode, t_end, tol=1e-7, hmax=2e-4, extra=()) -> dict:
+    """One landing of ``path`` at a fixed step (mode ``fixedH``) or with the controller (``adaptive``);
+    returns the line the command prints."""
+    sets = [f"operating.t_end={t_end}"] + list(extra)
+    sc = load_scenario(path, sets)
+    spec = build_spec(sc)
+    m = em.build_exudyn(spec)
+    st_ = em.SolverSettings.from_spec(spec)
+    rejects = [0]
+    if mode.startswith("fixed"):
+        st_.step = float(mode[5:])
+        st_.output_period = max(st_.output_period, st_.step)
+    else:
+        st_.step = hmax
+        mbs = m.mbs; sd = mbs.systemData
+        SOS = exu.ConfigurationType.StartOfStep
+        nl = spec.n_lat
+        # error scale per coordinate: lateral/race positions tol [m]; spin angle / axial: tol too
+        def post(mbs_, t):
+            it = mbs.sys['dynamicSolver'].it
+            h = it.currentStepSize
+            a1 = sd.GetODE2Coordinates_tt(); a0 = sd.GetODE2Coordinates_tt(SOS)
+            err = (h * h / 6.0) * np.abs(a1 - a0)
+            err[spec.i_theta] = 0.0
+            e = err.max() / tol
+            if e > 1.0 and h > 2e-6:
+                rejects[0] += 1
+                return [0.0, max(h * 0.2, h * 0.9 * e ** (-1.0 / 3.0), 1e-6)]
+            return [0.0, -1.0]
+        mbs.SetPostNewtonUserFunction(post)
+    ss = st_.apply(exu, 0.0, sc.t_end)
+    if not mode.startswith("fixed"):
+        ti = ss.timeIntegration
+        ti.discontinuous.useRecommendedStepSize = True
+        ti.discontinuous.iterationTolerance = 1e10
+        ti.discontinuous.maxIterations = 1
+        ti.adaptiveStepRecoverySteps = 5
+        ti.minimumStepSize = 1e-7
+    exu.config.suppressWarnings = True
+    w0 = time.perf_counter()
+    res = exu.SolveDynamic(m.mbs, ss)
+    wall = time.perf_counter() - w0
+    it = m.mbs.sys['dynamicSolver'].it
+    stats = {"wall_s": wall, "steps": int(it.currentStepIndex), "newton_iterations": int(it.newtonStepsCount), "jacobians": int(it.newtonJacobiCount), "complete": bool(res is not False), "message": "", "simulated_s": sc.t_end}
+    t, q, v = em.collect(m)
+    _, s = build_summary(sc, spec, t, q, v, stats)
+    w = s["whirl"]
+    return {"mode": mode, "tol": tol, "s_per_s": wall / sc.t_end, "steps": stats["steps"], "rejects": rejects[0],
+            "it": stats["newton_iterations"], "whirl": w.get("direction"), "hz": w.get("frequency_hz"),
+            "onset": w.get("onset_s"), "peak": max(b["max_contact_force_n"] for b in s["bearings"].values()),
+            "energy_err": s.get("energy", {}).get("balance_error")}
+
+
+def main(argv=None):
+    a = sys.argv[1:] if argv is None else list(argv)
+    if len(a) < 3:
+        sys.exit(__doc__.split("usage: ")[1].split("\n")[0])
+    print(json.dumps(probe(a[0], a[1], float(a[2]), float(a[3]) if len(a) > 3 else 1e-7,
+                           float(a[4]) if len(a) > 4 else 2e-4, a[5:])))
+
+
+if __name__ == "__main__":
+    main()

@@ -422,7 +422,33 @@ class Series:
         return len(self.values)
 
 
-class Landing:
+class _SeriesResults:
+    """Series by name, shared by the results objects: they hold ``_series`` ({name: values}, may
+    read lazily), ``units`` ({name: unit}) and ``summary`` (dict with ``complete``)."""
+
+    @property
+    def series_names(self) -> list[str]:
+        return list(self._series)
+
+    @property
+    def complete(self) -> bool:
+        return bool(self.summary.get("complete", False))
+
+    def series(self, name: str) -> Series:
+        """The time series ``name`` with its unit; an unknown name is an InputError listing the
+        available ones."""
+        if name not in self._series:
+            raise InputError("series", name, f"unknown series; available: {', '.join(self._series)}")
+        return Series(name, np.asarray(self._series[name]), self.units[name])
+
+    def __getitem__(self, name: str) -> Series:
+        return self.series(name)
+
+    def __contains__(self, name) -> bool:
+        return name in self._series
+
+
+class Landing(_SeriesResults):
     """Results of a landing (:func:`simulate` or :meth:`load`), the content of ``results.h5``.
 
     Attributes:
@@ -448,30 +474,10 @@ class Landing:
         self.summary = summary
 
     @property
-    def series_names(self) -> list[str]:
-        return list(self._series)
-
-    @property
-    def complete(self) -> bool:
-        return bool(self.summary.get("complete", False))
-
-    @property
     def whirl(self) -> dict:
         from .whirl import landing_whirl
 
         return landing_whirl(self.summary["whirl"]) if self.summary.get("whirl") else {}
-
-    def series(self, name: str) -> Series:
-        """The time series ``name`` with its unit; an unknown name is an InputError listing the
-        available ones."""
-        if name not in self._series:
-            raise InputError("series", name, f"unknown series; available: {', '.join(self._series)}")
-        return Series(name, np.asarray(self._series[name]), self.units[name])
-
-    __getitem__ = series
-
-    def __contains__(self, name) -> bool:
-        return name in self._series
 
     # ----- persistence
     def save(self, path) -> Path:

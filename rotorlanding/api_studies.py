@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .api import Scenario, Series, _override_items, _toml_dump
+from .api import Scenario, _override_items, _SeriesResults, _toml_dump
 from .errors import InputError
 from .safeio import atomic_write_text
 
@@ -109,7 +109,7 @@ def _folder_summary(path: Path, stored: dict) -> dict:
     return stored
 
 
-class Coastdown:
+class Coastdown(_SeriesResults):
     """Results of a coast-down (:func:`coastdown` or :meth:`load`): the ``results.h5`` and
     ``summary.json`` that ``rotorlanding coastdown`` writes into its folder.
 
@@ -150,25 +150,6 @@ class Coastdown:
         """Read a coast-down: its output folder (``results.h5`` inside) or the results.h5 itself."""
         p = Path(dir_or_file)
         return cls(p / "results.h5" if p.is_dir() else p)
-
-    @property
-    def series_names(self) -> list[str]:
-        return list(self._series)
-
-    @property
-    def complete(self) -> bool:
-        return bool(self.summary.get("complete", False))
-
-    def series(self, name: str) -> Series:
-        """The stored series ``name`` with its unit; an unknown name is an InputError listing them."""
-        if name not in self._series:
-            raise InputError("series", name, f"unknown series; available: {', '.join(self._series)}")
-        return Series(name, np.asarray(self._series[name]), self.units[name])
-
-    __getitem__ = series
-
-    def __contains__(self, name) -> bool:
-        return name in self._series
 
     def plot_speeds(self, path=None) -> Path:
         """Rotor and inner-race speeds [rpm] against time [s], the chunks that whirl forward /

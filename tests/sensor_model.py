@@ -6,9 +6,20 @@ can be left out. Written as a CSV the diagnose command reads."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from rotorlanding.diagnose_run import _simulate_features
+
+ROOT = Path(__file__).resolve().parents[1]
+#: the rig the diagnose tests were sized on: the first rig rotor with the bearings of
+#: tests/known_rig_bearings.toml, so a change of the shipped rig does not move their gaps
+KNOWN_RIG = (f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}", '
+             f'"{ROOT / "scenarios" / "rig_rotor_first.toml"}", '
+             f'"{ROOT / "tests" / "known_rig_bearings.toml"}"]')
+#: its radial clearance [m]
+C = 2e-4
 
 CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm")
 

@@ -14,13 +14,8 @@ from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, sensor_n
 from rotorlanding.measured import load_measurement
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sensor_model import write_record  # noqa: E402
+from sensor_model import C, KNOWN_RIG, write_record  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
-C = 2e-4
-KNOWN_RIG = (f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}", '
-             f'"{ROOT / "scenarios" / "rig_rotor_first.toml"}", '
-             f'"{ROOT / "tests" / "known_rig_bearings.toml"}"]')
 
 
 def _model(tmp_path, off):
