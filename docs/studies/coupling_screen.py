@@ -1,0 +1,52 @@
+"""Session-12 study tool (issue 15, point 1: "what the rig has that the model lacks"): the motor
+coupling's lateral stiffness at the DE end. The rotor is joined to the (grounded) motor shaft by a
+flexible coupling; after the drop the coupling holds its hub near the levitated axis, so it acts as
+a lateral spring k_c from the `coupling` station to ground. Screened here on the landed modal
+model (sleeves on k_sup = K_rib in series with balls and Hertz contact, as modal_screen.py):
+static sleeve reactions and the forward (f) / backward (b) modes with DE / NDE sleeve participation.
+
+usage (from the repository root): python docs/studies/coupling_screen.py [ROTOR.toml] [k_c ...]"""
+import copy
+import sys
+
+import numpy as np
+
+sys.path.insert(0, "docs/studies")
+import modal_screen as ms  # noqa: E402
+
+
+def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
+    data = copy.deepcopy(data)
+    for s in data["rotor"]["supports"]:
+        s["kyy"] = s["kzz"] = ms.ksup(krib)
+    if k_c > 0:
+        data["rotor"]["supports"].append({"station": "coupling", "kyy": k_c, "kzz": k_c, "cyy": 0.0, "czz": 0.0})
+    fe = ms.assemble(ms.rotor_from_dict(data))
+    sysm = ms.full_model(fe).with_supports()
+    u = np.linalg.solve(sysm.K, sysm.gravity_load())
+    reac = {s.station: -s.kzz * u[fe.dof(s.station, "z")] for s in fe.rotor.supports}
+    de, nde = fe.dof("DE_sleeve", "y"), fe.dof("NDE_sleeve", "y")
+    modes = {}
+    for sp in speeds:
+        row = []
+        for m in ms.modal_analysis(sysm, sp).modes:
+            if m.frequency_hz > fmax:
+                break
+            sh = m.shape
+            amax = max(abs(sh[i]) + abs(sh[i + 1]) for i in range(0, len(sh), 4))
+            row.append((m.whirl[0], m.frequency_hz, (abs(sh[de]) + abs(sh[de + 1])) / amax,
+                        (abs(sh[nde]) + abs(sh[nde + 1])) / amax))
+        modes[sp] = row
+    return reac, modes
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    path = args.pop(0) if args and args[0].endswith(".toml") else "scenarios/rig_rotor.toml"
+    ks = [float(a) for a in args] or [0.0, 3e5, 1e6, 3e6, 1e7, 3e7]
+    d = ms.load(path)
+    for k_c in ks:
+        reac, modes = screen(d, k_c)
+        print(f"k_c {k_c:.3g} N/m: reactions " + ", ".join(f"{k} {v:.0f} N" for k, v in reac.items()))
+        for sp, row in modes.items():
+            print(f"  {sp:5d} rpm: " + "  ".join(f"{w}{f:.1f}(DE{a:.2f},NDE{b:.2f})" for w, f, a, b in row))
