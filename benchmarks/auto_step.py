@@ -9,14 +9,16 @@ Variants: ``fixed:H`` (fixed step H), ``auto:TOL:HMAX`` (the StepController), ``
 (session 11's probe: a PostNewton recommendation with ``discontinuous.maxIterations = 1``).
 Variants alternate, best of --repeat by wall time; the load average is printed with each run.
 
-``verify``: every paper landing of ``rotorlanding validate`` (CASES), an ensemble of --drops from
-the 5 um circle (the validate ensembles' first members), auto against a fixed reference step
-(default 1.25e-5 s, 4x finer than the rig's 5e-5 s): per case the ensemble class, median frequency,
-onset and peak contact force of both, the differences, and wall s per simulated s.
+``verify``: every paper landing of ``rotorlanding validate`` (CASES), each as validate's ensemble
+(8 drops from the 5 um circle, 16 for the backward landing; or --drops), auto and the rig's fixed
+step against a fixed reference step (default 1.25e-5 s, 4x finer than the rig's 5e-5 s): per case
+the ensemble class, median frequency, onset and peak contact force (member medians), the
+differences with the issue's rule (class equal, frequency 1 %, peak 5 %), and wall s per simulated
+s (median of the members; runs one after another, so the load moves between rows).
 
 usage: python benchmarks/auto_step.py profile SCENARIO [--t-end S] [--variants fixed:5e-5,auto:1e-7:4e-4] [--repeat 3]
-       python benchmarks/auto_step.py verify [--drops 4] [--cases all] [--reference 1.25e-5] [--auto 1e-7:4e-4]
-                                             [--t-end S] [--json out.json]
+       python benchmarks/auto_step.py verify [--drops N] [--cases all] [--reference 1.25e-5] [--auto 1e-7:4e-4]
+                                             [--rig 5e-5] [--cache DIR] [--t-end S] [--json out.json]
 """
 
 from __future__ import annotations
@@ -216,7 +218,7 @@ def _median(xs):
 def verify(a):
     sys.path.insert(0, str(ROOT))
     from rotorlanding.ensemble import drop_offsets, ensemble_stats
-    from rotorlanding.validate import CASES, paper_dir
+    from rotorlanding.validate import CASES, ENSEMBLE, paper_dir
 
     global CACHE
     if a.cache:
@@ -234,7 +236,8 @@ def verify(a):
         rows = {}
         for v in [ref_v] + variants:
             members, runs = [], []
-            for extra in drop_offsets(a.drops_of or a.drops)[: a.drops]:
+            n = a.drops or ENSEMBLE[key]  # default: validate's ensemble (8 drops, 16 backward)
+            for extra in drop_offsets(a.drops_of or n)[:n]:
                 job = {"path": str(paper_dir() / fname), "variant": v, "sets": list(sets) + extra, "t_end": a.t_end}
                 if ctrl and v.startswith("auto"):
                     job["controller"] = ctrl
@@ -290,7 +293,8 @@ def main(argv=None):
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--json")
     v = sub.add_parser("verify")
-    v.add_argument("--drops", type=int, default=4, help="members per case (the first of the validate circle)")
+    v.add_argument("--drops", type=int, default=0,
+                   help="members per case (default 0: validate's ensembles, 8 drops, 16 for the backward landing)")
     v.add_argument("--drops-of", type=int, default=None,
                    help="circle size the members are taken from (default --drops; validate uses 8, 16 backward)")
     v.add_argument("--cases", default="all")

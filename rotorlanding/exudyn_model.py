@@ -596,4 +596,5 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
              "step_at_stop_s": float(it.currentStepSize)}
     if model.controller is not None:
         stats["rejected_steps"] = model.controller.rejected
+        stats["accepted_steps"] = model.controller.accepted
     return ok, msg, stats
