@@ -26,12 +26,12 @@ system's ODE2 vector is the spec's q.
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from . import step_kernel
 from .bearing_kernel import bearing_functions, direct, landing_functions, update_tilts
 from .forces import (BEARING_LOCAL, bearing_forces, mechanism_functions, registry_forces, rotor_forces,
                      rotor_loads_jacobian, rotor_loads_need_lateral)
@@ -144,10 +144,15 @@ class StepController:
         self.c = abs(beta - 1.0 / 6.0) / settings.step_tolerance
         self.hmax, self.hmin = settings.max_step, settings.min_step
         self.newton_grow_limit = max(2, settings.newton_max_iterations // 2)
-        # contact awareness: (station y index, race y index, clearance) per bearing
-        self.contacts = np.array([[b.i_station, b.i_race, b.params.clearance] for b in spec.bearings], float)
+        # contact awareness: station y index, race y index, clearance per bearing
+        self.iy = np.array([b.i_station for b in spec.bearings], dtype=np.int64)
+        self.ir = np.array([b.i_race for b in spec.bearings], dtype=np.int64)
+        self.cl = np.array([b.params.clearance for b in spec.bearings], dtype=float)
         self.h_impact = settings.step
         self.SOS = exu.ConfigurationType.StartOfStep
+        z = np.zeros(spec.n)
+        self.max_jump = direct(step_kernel.max_jump, z, z, self.idx)
+        self.time_to_contact = direct(step_kernel.time_to_contact, z, z, self.iy, self.ir, self.cl)
         self.sd = None
         self.solver = None
         self.accepted = 0
@@ -176,8 +181,7 @@ class StepController:
         it = self.solver.it
         h = it.currentStepSize
         sd = self.sd
-        da = np.abs(sd.GetODE2Coordinates_tt()[self.idx] - sd.GetODE2Coordinates_tt(self.SOS)[self.idx])
-        err = self.c * h * h * float(da.max())
+        err = self.c * h * h * self.max_jump(sd.GetODE2Coordinates_tt(), sd.GetODE2Coordinates_tt(self.SOS), self.idx)
         if err > self.REJECT and h > self.hmin * (1 + 1e-9):
             self.rejected += 1
             return [err, max(self.hmin, h * max(0.2, self.SAFETY * err ** (-1.0 / 3.0)))]
@@ -190,27 +194,12 @@ class StepController:
             # a contact that closes within the next step: end that step at the predicted closing
             # time, so the impact starts with a small step (the error estimate alone sees an impact
             # only after a large step ran into it, where Newton often fails after 12 iterations)
-            tau = time_to_contact(sd.GetODE2Coordinates(), sd.GetODE2Coordinates_t(), self.contacts)
+            tau = self.time_to_contact(sd.GetODE2Coordinates(), sd.GetODE2Coordinates_t(), self.iy, self.ir, self.cl)
             if tau < h_next:
                 h_next = max(self.h_impact, tau)
         it.currentStepSize = max(self.hmin, h_next)
         return [0.0, -1.0]
 
-
-def time_to_contact(q, v, contacts) -> float:
-    """Smallest time until a free journal reaches its clearance circle at the present radial
-    speed (inf when none is closing); contacts: rows (station y index, race y index, clearance)."""
-    tau = np.inf
-    for iy, ir, cl in contacts:
-        iy, ir = int(iy), int(ir)
-        dy, dz = q[iy] - q[ir], q[iy + 1] - q[ir + 1]
-        dist = math.hypot(dy, dz)
-        if dist >= cl or dist == 0.0:
-            continue
-        rate = (dy * (v[iy] - v[ir]) + dz * (v[iy + 1] - v[ir + 1])) / dist
-        if rate > 0.0:
-            tau = min(tau, (cl - dist) / rate)
-    return tau
 
 
 @dataclass
