@@ -441,8 +441,13 @@ def _scenario(data: dict, source, name) -> Scenario:
     sv.finish()
     if solver.step_control not in STEP_CONTROLS:
         raise InputError("solver.step_control", solver.step_control, "must be one of " + " | ".join(map(repr, STEP_CONTROLS)))
+    if solver.step_tolerance >= 1e-3:
+        raise InputError("solver.step_tolerance", solver.step_tolerance,
+                         "must be < 1e-3 m (a local error above any catcher clearance controls nothing)")
     if solver.step_control == "auto":
         # the controller moves the step inside [min_step, max_step] and starts at step
+        if solver.max_step > t_end:
+            raise InputError("solver.max_step", solver.max_step, f"must be <= operating.t_end ({t_end} s)")
         if not solver.min_step <= solver.step <= solver.max_step:
             raise InputError("solver.step", solver.step, f"must lie in [solver.min_step ({solver.min_step:g} s), "
                              f"solver.max_step ({solver.max_step:g} s)] when solver.step_control = 'auto'")
