@@ -153,6 +153,7 @@ COAST_CASES = [
     (["coastdown.stop_speed_rpm=-1"], "coastdown.stop_speed_rpm"),
     (["coastdown.chunk_s=0"], "coastdown.chunk_s"),
     (["coastdown.decimate_every=0"], "coastdown.decimate_every"),
+    (["solver.step_control='auto'"], "solver.step_control"),   # verified for landings only
     (["coastdown.nosuch=1"], "coastdown.nosuch"),
     (["contact.mu_ax=50"], "contact.mu_ax"),
     (["operating.speed_rpm=1e12"], "operating.speed_rpm"),
