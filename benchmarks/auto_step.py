@@ -191,9 +191,10 @@ def profile(a):
     for v in variants:
         r, i = best[v], inst[v]
         uf = i.get("user_functions", {})
-        attempts = uf.get("prestep", {}).get("calls", 0)
+        # step attempts = pre-step calls (the auto step runs the pre-step's work itself: not counted)
+        attempts = uf["prestep"]["calls"] if "prestep" in uf else "-"
         uf_us = 1e6 * sum(x["s"] for x in uf.values()) / max(r["steps"], 1)
-        print(f"{v:22s} {r['s_per_s']:6.3f} {r['wall_s'] / ref:6.3f} {r['steps']:6d} {attempts:8d} {r['rejected']:5d} "
+        print(f"{v:22s} {r['s_per_s']:6.3f} {r['wall_s'] / ref:6.3f} {r['steps']:6d} {attempts:>8} {r['rejected']:5d} "
               f"{r['newton_iterations']:7d} {r['newton_iterations'] / r['steps']:5.2f} {r['jacobians']:6d} "
               f"{1e6 * r['wall_s'] / r['steps']:7.1f} {uf_us:10.1f} {r['whirl']:>8} {r['hz'] or 0:7.2f} "
               f"{r['onset_s'] or 0:6.3f} {r['peak_force_n']:7.0f} {','.join(f'{x:.2f}' for x in r['loads'])}")
