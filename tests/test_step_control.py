@@ -86,3 +86,24 @@ def test_auto_step_moves_the_step_and_agrees_with_a_finer_fixed_step():
     assert abs(peak / peak_r - 1) < 0.05
     assert abs(disp / disp_r - 1) < 0.02
     assert energy < 0.01
+
+
+def test_validate_set_reaches_every_landing(monkeypatch, tmp_path):
+    """``rotorlanding validate --set`` (used to time validate with the auto step): the override is
+    appended to every landing's own overrides (centred cases, ensembles and studies)."""
+    import rotorlanding.validate as V
+
+    class Jobs(Exception):
+        pass
+
+    def fake_run_all(fn, jobs, workers, **kw):
+        raise Jobs(jobs)
+
+    monkeypatch.setattr(V, "run_all", fake_run_all)
+    with pytest.raises(Jobs) as e:
+        V.validate(tmp_path, sets=["solver.step_control='auto'"])
+    jobs = e.value.args[0]
+    assert len(jobs) > len(V.CASES)
+    assert all(j[2][-1] == "solver.step_control='auto'" for j in jobs)
+    # a case's own overrides stay in front (the no-axial-rub case)
+    assert any(j[2][:1] == ["effects.axial_rub=false"] for j in jobs)
