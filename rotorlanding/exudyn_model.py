@@ -217,7 +217,6 @@ class StepController:
         return [0.0, -1.0]
 
 
-
 @dataclass
 class ExudynModel:
     SC: object
@@ -230,6 +229,7 @@ class ExudynModel:
     controller: object = None   # StepController of the last auto-step solve (its counts)
     resample: tuple = None      # (t_start, output period) set by solve() with the auto step
     pre_step_detached: bool = False  # the auto step runs the pre-step's work itself
+    post_newton_set: bool = False    # the auto step's controller is Exudyn's PostNewton hook
 
 
 GYRO_UPDATE_TOL = 1e-4  # relative change of Omega that triggers a new C + Omega G
@@ -588,10 +588,15 @@ def solve(model: ExudynModel, t_start: float, t_end: float, settings: SolverSett
             model.mbs.SetPreStepUserFunction(0)
             model.pre_step_detached = True
         model.mbs.SetPostNewtonUserFunction(model.controller)
+        model.post_newton_set = True
         model.resample = (t_start, settings.output_period)
-    elif model.pre_step_detached:
-        model.mbs.SetPreStepUserFunction(pre)  # a fixed-step solve after an auto-step one
-        model.pre_step_detached = False
+    else:  # a fixed-step solve after an auto-step one: the hooks as built
+        if model.post_newton_set:
+            model.mbs.SetPostNewtonUserFunction(0)
+            model.post_newton_set = False
+        if model.pre_step_detached:
+            model.mbs.SetPreStepUserFunction(pre)
+            model.pre_step_detached = False
     # Exudyn warns on stdout about per-step allocations of Python user functions (expected here);
     # our own progress and summary are the user-facing output
     exu.config.suppressWarnings = True

@@ -107,3 +107,28 @@ def test_validate_set_reaches_every_landing(monkeypatch, tmp_path):
     assert all(j[2][-1] == "solver.step_control='auto'" for j in jobs)
     # a case's own overrides stay in front (the no-axial-rub case)
     assert any(j[2][:1] == ["effects.axial_rub=false"] for j in jobs)
+
+
+def test_fixed_solve_after_an_auto_solve_is_the_fixed_one():
+    """One model solved with the auto step and then with the fixed step gives the fixed step's
+    trajectory bit for bit (the auto step's hooks are taken off again)."""
+    import exudyn  # noqa: F401
+
+    from rotorlanding.exudyn_model import SolverSettings, build_exudyn, collect, solve
+    from rotorlanding.landing import build_spec
+
+    spec = build_spec(_scenario(t_end=0.02))
+    fixed = SolverSettings.from_spec(spec)
+    auto = SolverSettings.from_spec(spec)
+    auto.step_control = "auto"
+    m = build_exudyn(spec, accelerations=True)
+    assert solve(m, 0.0, 0.02, auto)[0]
+    assert solve(m, 0.0, 0.02, fixed)[0]
+    # (sensors keep the earlier run's samples: compare the tail of the second run)
+    t1, q1, v1 = collect(m)
+    m2 = build_exudyn(spec)
+    assert solve(m2, 0.0, 0.02, fixed)[0]
+    t2, q2, v2 = collect(m2)
+    n = len(t2)
+    np.testing.assert_array_equal(q1[-n:], q2)
+    np.testing.assert_array_equal(v1[-n:], v2)
