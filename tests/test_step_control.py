@@ -79,6 +79,12 @@ def test_auto_step_moves_the_step_and_agrees_with_a_finer_fixed_step():
     n_fixed = 0.1 / 5e-5
     assert info["steps"] != pytest.approx(n_fixed, rel=0.02)  # the step did move
     np.testing.assert_allclose(t[:-1], 1e-4 * np.arange(len(t) - 1), rtol=0, atol=1e-12)
+    from rotorlanding.run import build_summary
+
+    info.update(simulated_s=float(t[-1]))
+    _, summary = build_summary(_scenario(step_control="auto", step_tolerance=1e-7), spec, t, q, v, info)
+    assert summary["performance"]["step_control"] == "auto"
+    assert summary["performance"]["rejected_steps"] == info["rejected_steps"]
     peak, disp, energy = _peak_and_range(spec, t, q, v)
     spec_r, t_r, q_r, v_r, info_r = simulate(_scenario(step=1.25e-5), progress=False)
     assert info_r["complete"] and len(t_r) == len(t)
