@@ -1,5 +1,13 @@
 """Probe (issue 21, step 3, not adopted): an error-controlled step through Exudyn's PostNewton hook.
 
+Session 12: this probe's controller never acted. Exudyn 1.13.6 repeats a step only when the
+returned error exceeds ``discontinuous.iterationTolerance`` and another discontinuous iteration is
+allowed; here the error is 0, the tolerance 1e10 and ``maxIterations = 1``, so every step was
+accepted as it stood and the run is the fixed ``HMAX`` step with Exudyn's halving after failed
+Newton iterations ("rejects" counts the requests). Kept as the record of session 11; the working
+controller is ``solver.step_control = "auto"`` (rotorlanding.exudyn_model.StepController,
+benchmarks/auto_step.py, docs/performance.md 3b).
+
 Exudyn 1.13.6's implicit solver accepts ``mbs.SetPostNewtonUserFunction(f)``: after each converged
 step, ``f(mbs, t)`` returns ``[discontinuousError, recommendedStepSize]``; a recommended step > 0
 (with ``timeIntegration.discontinuous.useRecommendedStepSize``) makes the solver repeat the step

@@ -59,12 +59,14 @@ PRE_ISSUE6_NEWTON = dict(jacobian_per_step=False, newton_contractivity=0.5, newt
                          adaptive_recovery_iterations=7, linear_solver="EXUdense")  # Exudyn's defaults
 
 
-def _load(path, t_end, step):
+def _load(path, t_end, step, auto=None):
     from rotorlanding.scenario import load_scenario
 
     sets = [] if t_end is None else [f"operating.t_end={t_end}"]
     if step is not None:
         sets += [f"solver.step={step}", f"solver.output_period={step}"]
+    if auto is not None:  # (tolerance, max step): the error-controlled step, rig output period
+        sets += ["solver.step_control='auto'", f"solver.step_tolerance={auto[0]!r}", f"solver.max_step={auto[1]!r}"]
     return load_scenario(path, sets)
 
 
@@ -73,7 +75,7 @@ def worker(job: dict) -> dict:
     load = os.getloadavg()[0]
     from rotorlanding.landing import build_spec
 
-    sc = _load(job["path"], job.get("t_end"), job.get("step"))
+    sc = _load(job["path"], job.get("t_end"), job.get("step"), job.get("auto"))
     spec = build_spec(sc)
     t_end = sc.t_end
     out = {"load_1min": load, "simulated_s": t_end, "coordinates": spec.n}
@@ -127,7 +129,8 @@ def worker(job: dict) -> dict:
         model = build_exudyn(spec, analytic_jacobian=analytic, merge_connectors=analytic, instrument=acc)
         ok, msg, st = solve(model, 0.0, t_end, settings)
         out.update(wall_s=st["wall_s"], complete=ok, steps=st["steps"], newton_iterations=st["newton_iterations"],
-                   jacobians=st["jacobians"], step_s=settings.step)
+                   jacobians=st["jacobians"], step_s=None if settings.step_control == "auto" else settings.step,
+                   rejected_steps=st.get("rejected_steps"))
         if acc is not None:
             out["user_function_s"] = {k: v[0] for k, v in acc.items()}
             out["user_function_calls"] = {k: v[1] for k, v in acc.items()}
@@ -192,6 +195,8 @@ def main(argv=None):
     ap.add_argument("--baseline", action="store_true", help="also the pre-issue-6 model (numerical Jacobians)")
     ap.add_argument("--no-lsoda", action="store_true")
     ap.add_argument("--convergence", action="store_true", help="also peak force / whirl at step and step/2")
+    ap.add_argument("--auto", default=None, metavar="TOL:HMAX",
+                    help="also the error-controlled step (solver.step_control = 'auto') with these settings")
     ap.add_argument("--cases", default="0,1", help="'all' or comma-separated indices into the case list (default 0,1: the two cases with established benchmark steps)")
     ap.add_argument("--json")
     a = ap.parse_args(argv)
@@ -211,6 +216,10 @@ def main(argv=None):
         base = {"path": str(path), "t_end": a.t_end}
         rows[f"exudyn h={step:g}"] = best_of(dict(base, kind="exudyn", step=step), a.repeat)
         rows["exudyn scenario step"] = best_of(dict(base, kind="exudyn"), a.repeat)
+        if a.auto:
+            tol, hmax = (float(x) for x in a.auto.split(":"))
+            rows[f"exudyn auto tol {tol:g} max {hmax:g}"] = best_of(dict(base, kind="exudyn", auto=[tol, hmax]),
+                                                                    a.repeat)
         if a.baseline:
             rows["exudyn numerical jacobians (before)"] = best_of(dict(base, kind="numerical"), max(1, a.repeat - 1))
         if not a.no_lsoda:
@@ -220,6 +229,9 @@ def main(argv=None):
         ex = rows[f"exudyn h={step:g}"]
         if "LSODA rtol 1e-6" in rows:
             case["lsoda_over_exudyn"] = rows["LSODA rtol 1e-6"]["wall_s_per_simulated_s"] / ex["wall_s_per_simulated_s"]
+            for name, r in rows.items():
+                if name.startswith("exudyn auto"):
+                    case["lsoda_over_exudyn_auto"] = rows["LSODA rtol 1e-6"]["wall_s_per_simulated_s"] / r["wall_s_per_simulated_s"]
         if a.convergence:
             case["convergence"] = convergence(path, step, a.t_end)
         report["cases"].append(case)
@@ -242,6 +254,8 @@ def _print_case(case):
               + (f"  (nfev {r['rhs_evaluations']})" if "rhs_evaluations" in r else ""))
     if "lsoda_over_exudyn" in case:
         print(f"LSODA / Exudyn (wall per simulated s): {case['lsoda_over_exudyn']:.1f}x")
+    if "lsoda_over_exudyn_auto" in case:
+        print(f"LSODA / Exudyn auto step (wall per simulated s): {case['lsoda_over_exudyn_auto']:.1f}x")
     c = case.get("convergence")
     if c:
         print(f"step convergence h={c['step_s']:g} -> {c['half_step_s']:g}: peak force {c['peak_force_n'][0]:.0f} -> "

@@ -248,7 +248,8 @@ def cmd_validate(args) -> int:
         raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
     if args.publish is not None and not Path(args.publish).is_dir():
         raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
-    res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig, publish=args.publish)
+    res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig, publish=args.publish,
+                   sets=args.sets)
     ev = res["evaluation"]
     for c in ev["checks"]:
         print(check_line(c))
@@ -432,6 +433,8 @@ def build_parser() -> argparse.ArgumentParser:
     va.add_argument("--workers", type=int, default=2, help="parallel runs (default 2)")
     va.add_argument("--rig", default=None, help="rotor/rig TOML merged on top of every paper scenario "
                                                 "(e.g. scenarios/rig_rotor_first.toml)")
+    va.add_argument("--set", dest="sets", action="append", default=[], metavar="KEY=VALUE",
+                    help="override a value in every landing, e.g. --set solver.step_control='auto' (stated in the report)")
     va.set_defaults(func=cmd_validate)
 
     an = sub.add_parser("animate", help="render a results.h5 offline (Exudyn's raytracer: the rotor in 3D, and "

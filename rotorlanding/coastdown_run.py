@@ -101,6 +101,11 @@ def coastdown_from_dict(data: dict | None, scenario: Scenario) -> Coastdown:
     landing = t.number("landing_s", d.landing_s, nonnegative=True)
     smooth = t.number("smooth_step", scenario.solver.step, positive=True)
     t.finish()
+    if scenario.solver.step_control != "fixed":
+        # the chunks, checkpoints and smooth_step are laid out on fixed steps, and the auto step is
+        # verified on the paper landings only (docs/performance.md, issue 21)
+        raise InputError("solver.step_control", scenario.solver.step_control,
+                         "coast-down runs need 'fixed' (use [coastdown] landing_s / smooth_step for a larger step later)")
     if stop >= scenario.speed_rpm:
         raise InputError("coastdown.stop_speed_rpm", stop,
                          f"must be below operating.speed_rpm ({scenario.speed_rpm:g} rpm)")

@@ -140,6 +140,10 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
                               "newton_iterations": stats["newton_iterations"], "jacobians": stats["jacobians"],
                               "wall_s_per_simulated_s": stats["wall_s"] / max(stats["simulated_s"], 1e-12),
                               "step_s": scenario.solver.step}
+    if scenario.solver.step_control == "auto":  # step_s is then the first step; the controller's counts
+        summary["performance"].update(step_control="auto", step_tolerance_m=scenario.solver.step_tolerance,
+                                      max_step_s=scenario.solver.max_step,
+                                      rejected_steps=stats.get("rejected_steps"))
     summary["units"] = "SI (m, N, s, J); speeds in rpm as named"
     warnings = []
     err = summary["energy"]["balance_error_relative"]

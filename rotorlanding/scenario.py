@@ -178,6 +178,17 @@ class Solver:
     output_period: float  # s
     newton_relative_tolerance: float = 1e-6
     newton_absolute_tolerance: float = 1e-8
+    #: "fixed": every step is ``step`` (halved only where Newton fails); "auto": error-controlled
+    #: step in [min_step, max_step] starting at ``step`` (rotorlanding.exudyn_model.StepController,
+    #: docs/performance.md issue 21)
+    step_control: str = "fixed"
+    #: auto: allowed local position error per step [m] (estimate |beta - 1/6| h^2 |a_end - a_start|)
+    step_tolerance: float = 1e-7
+    max_step: float = 4e-4      # s, auto only
+    min_step: float = 1e-7      # s, auto only
+
+
+STEP_CONTROLS = ("fixed", "auto")
 
 
 @dataclass(frozen=True)
@@ -424,8 +435,22 @@ def _scenario(data: dict, source, name) -> Scenario:
     solver = Solver(sv.number("step", 1e-5, positive=True), sv.number("spectral_radius", 0.8),
                     sv.boolean("modified_newton", True), sv.number("output_period", 1e-4, positive=True),
                     sv.number("newton_relative_tolerance", 1e-6, positive=True),
-                    sv.number("newton_absolute_tolerance", 1e-8, positive=True))
+                    sv.number("newton_absolute_tolerance", 1e-8, positive=True),
+                    sv.string("step_control", "fixed"), sv.number("step_tolerance", 1e-7, positive=True),
+                    sv.number("max_step", 4e-4, positive=True), sv.number("min_step", 1e-7, positive=True))
     sv.finish()
+    if solver.step_control not in STEP_CONTROLS:
+        raise InputError("solver.step_control", solver.step_control, "must be one of " + " | ".join(map(repr, STEP_CONTROLS)))
+    if solver.step_tolerance >= 1e-3:
+        raise InputError("solver.step_tolerance", solver.step_tolerance,
+                         "must be < 1e-3 m (a local error above any catcher clearance controls nothing)")
+    if solver.step_control == "auto":
+        # the controller moves the step inside [min_step, max_step] and starts at step
+        if solver.max_step > t_end:
+            raise InputError("solver.max_step", solver.max_step, f"must be <= operating.t_end ({t_end} s)")
+        if not solver.min_step <= solver.step <= solver.max_step:
+            raise InputError("solver.step", solver.step, f"must lie in [solver.min_step ({solver.min_step:g} s), "
+                             f"solver.max_step ({solver.max_step:g} s)] when solver.step_control = 'auto'")
     if not 0.0 <= solver.spectral_radius <= 1.0:
         raise InputError("solver.spectral_radius", solver.spectral_radius, "must lie in [0, 1]")
     if solver.step > t_end:

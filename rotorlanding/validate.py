@@ -574,6 +574,8 @@ def report_markdown(result: dict) -> str:
              counts_line(ev), "",
              *([f"Rig rotor: `{_shown(result['rig_overlay'])}` merged over every paper scenario (`--rig`).", ""]
                if result.get("rig_overlay") else []),
+             *([f"Overrides applied to every landing (`--set`): " + ", ".join(f"`{x}`" for x in result["overrides"])
+                + ".", ""] if result.get("overrides") else []),
              *([f"Run time: {result['run']['wall_s']} s wall for {result['run'].get('landings', len(s))} landings on "
                 f"{result['run']['workers']} "
                 f"workers ({result['run']['cpus']} CPUs, Python {result['run']['python']}); per centred landing: "
@@ -786,9 +788,10 @@ def representative_drop(ens: dict) -> int:
     return min(same, key=lambda k: abs(ens["members"][k]["v_disp_range_m"][1] - ref))
 
 
-def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, rig=None) -> dict:
+def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, rig=None, sets=()) -> dict:
     """Run the paper landings into ``out_dir``; ``rig``: a rotor (or rig) file merged on top of every
-    paper scenario. ``publish``: a folder that also gets the report (``validation.md``, or
+    paper scenario; ``sets``: ``--set`` overrides applied to every landing after the case's own (e.g.
+    ``solver.step_control='auto'``), stated in the report. ``publish``: a folder that also gets the report (``validation.md``, or
     ``validation_<rig file stem>.md`` with ``rig``), e.g. the checkout's ``docs``; nothing is
     written outside ``out_dir`` without it."""
     from . import __version__
@@ -798,8 +801,9 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     out.mkdir(parents=True, exist_ok=True)
     t_end = QUICK_T_END if quick else None
     rig = str(Path(rig).resolve()) if rig else None
-    jobs = [(k, f, sets, str(out), t_end, rig, True) for k, (f, sets) in CASES.items()]
-    jobs += _ensemble_jobs(out, t_end, rig)
+    extra = list(sets)
+    jobs = [(k, f, list(cs) + extra, str(out), t_end, rig, True) for k, (f, cs) in CASES.items()]
+    jobs += [(k, f, list(cs) + extra, *rest) for k, f, cs, *rest in _ensemble_jobs(out, t_end, rig)]
     wall0 = time.perf_counter()
     # the workers fork after the parent has loaded the model code and kernels (runner.warm_model)
     warm = functools.partial(warm_model, paper_dir() / "forward_whirl_landing.toml")
@@ -811,7 +815,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
             members.setdefault(key, {})[int(k)] = member_result(summaries.pop(name))
     members = {key: [m[k] for k in sorted(m)] for key, m in members.items()}
     ensembles = {key: {**ensemble_stats(m), "members": m} for key, m in members.items()}
-    result = {"version": __version__, "quick": quick, "rig_overlay": rig,
+    result = {"version": __version__, "quick": quick, "rig_overlay": rig, "overrides": extra,
               "t_end_note": f"{QUICK_T_END} s each (--quick)" if quick else "full length (scenario t_end)",
               "paper": paper(), "cases": summaries, "ensembles": ensembles,
               "run": {"wall_s": round(time.perf_counter() - wall0, 1), "workers": workers,

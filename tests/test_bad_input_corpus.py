@@ -83,6 +83,10 @@ RUN_SET_CASES += [
     (["operating.t_end=1e300"], ["operating.t_end"]),
     (["bearings.DE.eta=3"], ["bearings.DE.eta"]),
     (["bearings.DE.pitch_diameter=0.05"], ["bearings.DE.pitch_diameter"]),  # inside the bore
+    (["solver.step_control='adaptive'"], ["solver.step_control"]),
+    (["solver.step_control='auto'", "solver.max_step=1e-6"], ["solver.step"]),
+    (["solver.step_control='auto'", "solver.max_step=1e300"], ["solver.max_step"]),
+    (["solver.step_tolerance=1e300"], ["solver.step_tolerance"]),
     (["contact.mu_rad=nan"], ["contact.mu_rad"]),
     (["contact.mu_rad=inf"], ["contact.mu_rad"]),
     (["contact.mu_rad=\"high\""], ["contact.mu_rad"]),
@@ -149,6 +153,7 @@ COAST_CASES = [
     (["coastdown.stop_speed_rpm=-1"], "coastdown.stop_speed_rpm"),
     (["coastdown.chunk_s=0"], "coastdown.chunk_s"),
     (["coastdown.decimate_every=0"], "coastdown.decimate_every"),
+    (["solver.step_control='auto'"], "solver.step_control"),   # verified for landings only
     (["coastdown.nosuch=1"], "coastdown.nosuch"),
     (["contact.mu_ax=50"], "contact.mu_ax"),
     (["operating.speed_rpm=1e12"], "operating.speed_rpm"),
