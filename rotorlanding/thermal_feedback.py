@@ -122,6 +122,24 @@ def post_feedback(ev, laws) -> None:
     ev.out("thermal_preload_n", np.array([r["axial_preload"] for r in rows]))
 
 
+def first_runaway(spec, t, series: dict):
+    """The earliest runaway over the samples ``t`` of the bearings with an active feedback:
+    (bearing name, time [s], reason) or None. A coast-down stops there (beyond it the growth,
+    preload and drag laws are outside their range: 52100 softens, the preload geometry breaks)."""
+    from .mechanisms import thermal_feedback_active
+
+    found = []
+    for b in spec.bearings:
+        if thermal_feedback_active(spec, b.laws):
+            s = summary(t, series, b.name, b.laws)
+            if s["runaway"]:
+                found.append((s["t_runaway_s"], b.name, s["runaway_reason"]))
+    if not found:
+        return None
+    t_r, name, why = min(found)
+    return name, t_r, why
+
+
 def summary(t, series: dict, name: str, laws) -> dict:
     """Runaway detection of one bearing over the stored samples (module docstring)."""
     from .thermal_states import NODE_SERIES
