@@ -97,6 +97,11 @@ RUN_SET_CASES += [
     (["nosuch.table=1"], ["nosuch.table"]),
     (["effects.no_effect=true"], ["effects.no_effect"]),
     (["effects.windage=3"], ["effects.windage"]),
+    # issue 18: the verdict's whirl-severity limits and a thermal capacity that cannot be zero
+    (["limits.whirl_time_s=-1"], ["limits.whirl_time_s"]),
+    (["limits.whirl_orbit_over_clearance=nan"], ["limits.whirl_orbit_over_clearance"]),
+    (["bearings.NDE.thermal_housing_capacity_j_k=0"], ["bearings.NDE.thermal_housing_capacity_j_k"]),
+    (["bearings.DE.thermal_width_m=0"], ["bearings.DE.thermal_width_m"]),
 ]
 
 #: whole-file mutations of a scenario: (name, bytes or a function of the original text, field)
