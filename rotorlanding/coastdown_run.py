@@ -84,6 +84,7 @@ class Coastdown:
     """The ``[coastdown]`` table."""
 
     stop_speed_rpm: float = 10.0        # rpm: the run ends after the chunk in which |rotor speed| <= this
+    #                                     (or in which a bearing runs away: thermal_feedback.first_runaway)
     chunk_s: float = 0.1                # s: simulated length of one chunk (one Exudyn solve)
     decimate_every: int = 100           # -: in smooth phases keep every k-th output sample
     fast_force_rate_n_s: float = 2.0e5  # N/s: contact-force rate above which samples are kept at full rate

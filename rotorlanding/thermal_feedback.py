@@ -24,8 +24,8 @@ docs/designer_models.md):
 
 Operator split: the solver reads these retuned laws, frozen over one coast-down chunk, from the
 temperatures at the chunk's start (the carried state the chunk starts from: a resume reads the same
-values). The feedback lags the temperatures by one chunk: chunk_s (0.05-0.2 s) against the
-network's fastest time constant (~22 s on the rig's defaults), a ratio <= 0.01; a landing run (one
+values). The feedback lags the temperatures by one chunk: chunk_s (1 s in the rig's coast-down)
+against the network's fastest time constant (~22 s on the rig's defaults), a ratio ~0.05; a landing run (one
 solve from the mounting temperature) sees the cold laws, which is what a fraction of a second of
 heating gives (< 1 K). The retuned laws change the elastic energies between chunks (k_b1, the
 clearance): a jump of ~1e-3 J against kJ dissipated, visible in the balance residual.
