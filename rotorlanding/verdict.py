@@ -9,7 +9,8 @@ laws (``user_forces``):
   its axial load F_a (the axial contact force where the bearing takes the thrust, plus the thermal
   preload when thermal feedback is on) -> the load of the most loaded ball by the discrete
   Stribeck/Harris distribution (``contact_stress.ball_loads_fast``, compiled; Z balls, the actual
-  internal clearance: the feedback's series, else its cold default 20 um, assumed) -> the Hertz
+  internal clearance: the feedback's series, else its cold default 20 um, assumed; once it is
+  negative the rings move apart axially until the balls carry F_a, preload included) -> the Hertz
   peak pressure p0 = c Q_max^(1/3) on the inner and the outer race (Hertz point contact: p0 ~
   Q^(1/3) exactly, c from ``hertz_point_contact`` at 1 N; 7212 BE internal geometry, assumed:
   docs/designer_models.md). Time and count above the limit (``fatigue.static_exceedance``).
