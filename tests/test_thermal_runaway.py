@@ -67,14 +67,14 @@ def _run(tmp_path, k, t_end):
 
 
 def _model(laws, omega, f_r, k):
-    """The law layer's steady model of the same bearing (unscaled network: steady states do not
-    depend on the capacities)."""
+    """The law layer's steady model of the same bearing (the network here has the scaled
+    capacities, which do not enter a steady state: C dT/dt = 0)."""
     return FeedbackModel(ts.network_for(laws), geometry(laws), laws.hp, omega, f_r, 0.0,
                          laws.extra["thermal_internal_clearance_m"], laws.extra["thermal_ambient_k"], 11.9e-6, k)
 
 
 def _critical_stiffness(laws, omega, f_r, lo=1e6, hi=1e11):
-    for _ in range(30):  # bisection on a log axis: k* to 0.2 %
+    for _ in range(30):  # bisection on a log axis: k* to ~1e-8 relative
         mid = math.sqrt(lo * hi)
         if steady_with_feedback(_model(laws, omega, f_r, mid), np.zeros(5))["status"] == "stable":
             lo = mid
