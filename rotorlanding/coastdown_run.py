@@ -73,6 +73,7 @@ from .results import (CUMULATIVE_PREFIXES, Checkpoint, Store, check_resumable, c
                       verify_checkpoint)
 from .safeio import WriteError, atomic_write_text, check_out_dir, fault
 from .scenario import Scenario, scenario_from_dict
+from .thermal_feedback import first_runaway
 from .thermal_states import file_summary as thermal_file_summary, format_lines as format_thermal
 
 FIELDS = ("stop_speed_rpm", "chunk_s", "decimate_every", "fast_force_rate_n_s", "landing_s", "smooth_step")
@@ -83,6 +84,7 @@ class Coastdown:
     """The ``[coastdown]`` table."""
 
     stop_speed_rpm: float = 10.0        # rpm: the run ends after the chunk in which |rotor speed| <= this
+    #                                     (or in which a bearing runs away: thermal_feedback.first_runaway)
     chunk_s: float = 0.1                # s: simulated length of one chunk (one Exudyn solve)
     decimate_every: int = 100           # -: in smooth phases keep every k-th output sample
     fast_force_rate_n_s: float = 2.0e5  # N/s: contact-force rate above which samples are kept at full rate
@@ -412,11 +414,14 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
             for b in spec.bearing_names:
                 row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(*rotor_force(series, b))))
             reason, t_stop = "", None
+            runaway = first_runaway(spec_k, t, series)
             if speed_now <= stop_rpm:
                 reason = f"rotor speed {speed_now:.1f} rpm <= stop_speed_rpm {stop_rpm:g}"
                 rpm = np.abs(series["rotor_speed_rpm"])
                 i = int(np.argmax(rpm <= stop_rpm))  # first sample at or below the stop speed
                 t_stop = float(t[i] if i == 0 else np.interp(stop_rpm, [rpm[i], rpm[i - 1]], [t[i], t[i - 1]]))
+            elif runaway:
+                reason = f"thermal runaway of {runaway[0]} at t = {runaway[1]:.3f} s ({runaway[2]})"
             elif t1 >= t_end - 0.5 * settings.step:
                 reason = f"t_end ({t_end:g} s) reached at {speed_now:.4g} rpm"
             rec = dict(wall_s=float(rs["wall_s"]) + carry_s + (time.perf_counter() - wall_chunk0),

@@ -10,7 +10,9 @@ read and what is recalled):
 | ``temperature_degc`` | 120.0 | any node of a catcher bearing (rings, balls, sleeve): AISI 52100 data sheets give continuous operation up to 120 degC (checked: stindia / compraco 52100 sheets); common bearing greases have their upper limit there too (quoted) |
 | ``drops_required`` | 1 | drops (each a landing, or a coast-down when the scenario is one) the bearing must survive: the purchaser's number (API 617/684 leave it to the purchaser; not available here) |
 | ``whirl_acceptable_below_rpm`` | 0.0 | whirl (forward or backward) of the landed journal is acceptable only while the rotor turns slower than this (default: no whirl is acceptable) |
-| ``contact_force_n`` | 0.0 | peak contact force on the rotor at a bearing; 0: not a criterion (the pressures are) |
+| ``contact_force_n`` | 0.0 | peak contact force on the rotor at a bearing; 0: not judged, reported only (the pressures are the criteria) |
+| ``whirl_time_s`` | 0.0 | time the landed journal may whirl (whirl severity); 0: not judged, reported only |
+| ``whirl_orbit_over_clearance`` | 0.0 | whirl orbit amplitude over the radial clearance (landing runs; whirl severity); 0: not judged, reported only |
 | ``dynamic_load_rating_n`` | 61000.0 | C of the catcher bearing, the stress-life anchor of the damage per drop (SKF 7212 BECBP, quoted; public tables also list 51.5 kN: damage scales with C^-3) |
 | ``stress_life_exponent`` | 9.0 | N ~ p^-n (ISO 281 ball exponent 3 x Hertz 3, Lundberg-Palmgren; Zaretsky finds ~12) |
 
@@ -35,6 +37,8 @@ class Limits:
     drops_required: int = 1
     whirl_acceptable_below_rpm: float = 0.0
     contact_force_n: float = 0.0
+    whirl_time_s: float = 0.0
+    whirl_orbit_over_clearance: float = 0.0
     dynamic_load_rating_n: float = 61000.0
     stress_life_exponent: float = 9.0
 
@@ -53,7 +57,9 @@ SOURCES = {
     "temperature_degc": "AISI 52100 continuous operation up to 120 degC (data sheets); grease limit of the same order",
     "drops_required": "purchaser's number",
     "whirl_acceptable_below_rpm": "designer's choice (default: no whirl)",
-    "contact_force_n": "designer's choice (0: not checked)",
+    "contact_force_n": "designer's choice (0: reported, not judged)",
+    "whirl_time_s": "designer's choice (0: reported, not judged)",
+    "whirl_orbit_over_clearance": "designer's choice (0: reported, not judged)",
     "dynamic_load_rating_n": "SKF 7212 BECBP C = 61 kN (quoted)",
     "stress_life_exponent": "ISO 281 / Lundberg-Palmgren: 3 x 3 = 9",
 }
@@ -71,6 +77,9 @@ def limits_from_dict(data) -> Limits:
         whirl_acceptable_below_rpm=t.number("whirl_acceptable_below_rpm", d.whirl_acceptable_below_rpm,
                                             nonnegative=True),
         contact_force_n=t.number("contact_force_n", d.contact_force_n, nonnegative=True),
+        whirl_time_s=t.number("whirl_time_s", d.whirl_time_s, nonnegative=True),
+        whirl_orbit_over_clearance=t.number("whirl_orbit_over_clearance", d.whirl_orbit_over_clearance,
+                                            nonnegative=True),
         dynamic_load_rating_n=t.number("dynamic_load_rating_n", d.dynamic_load_rating_n, positive=True),
         stress_life_exponent=t.number("stress_life_exponent", d.stress_life_exponent, positive=True),
     )

@@ -68,12 +68,16 @@ class Output:
 @dataclass(frozen=True)
 class Param:
     """A per-bearing input of a mechanism that is not part of ``scenario.Bearing`` (read from
-    ``[bearings.NAME].key``, >= 0); ``BearingLaws.extra[key]`` holds it, 0 with the effect off."""
+    ``[bearings.NAME].key``, >= 0, > 0 with ``positive``, <= ``upper`` whose reason ``why`` the
+    error gives: scenario._param); ``BearingLaws.extra[key]`` holds it, 0 with the effect off."""
 
     key: str
     unit: str
     default: float
     doc: str = ""
+    positive: bool = False           # 0 is no meaningful value (a capacity, a length)
+    upper: float = math.inf          # physical maximum, checked at load with ``why`` in the one-line error
+    why: str = ""
 
 
 def _always(spec, laws) -> bool:
@@ -479,6 +483,9 @@ REGISTRY += (
 )
 
 
+_SOLID_SHELL = ("more than a solid copper shell 1 m wide whose radii differ by 5 % (2 pi 400 W/mK x 1 m / ln 1.05 "
+                "= 5e4 W/K)")
+
 # the catcher bearing's thermal network (issue 18): a post-processing mechanism with carried states;
 # its law and routing in rotorlanding/thermal_states.py (user_forces/thermal.py's network)
 
@@ -509,12 +516,18 @@ REGISTRY += (
               doc="lumped thermal network of the catcher bearing, heated by the bearing's dissipation "
                   "(rotorlanding/thermal_states.py)",
               effect="catcher_thermal", default_on=True,
-              params=(Param("thermal_ambient_k", "K", 293.15, "ambient (and mounting) temperature"),
-                      Param("thermal_g_ball_set_w_k", "W/K", 0.5, "ball set to each ring (assumed, docs/designer_models.md)"),
-                      Param("thermal_h_outer_housing_w_m2k", "W/(m^2 K)", 1000.0, "outer ring to housing over its OD"),
-                      Param("thermal_g_housing_frame_w_k", "W/K", 2.0, "housing into the machine frame"),
-                      Param("thermal_housing_capacity_j_k", "J/K", 950.0, "housing heat capacity (2 kg steel)"),
-                      Param("thermal_width_m", "m", 0.022, "ring width (7212: 22 mm), the sleeve contact length"))),
+              params=(Param("thermal_ambient_k", "K", 293.15, "ambient (and mounting) temperature", upper=600.0,
+                            why="bearing steel is tempered at 150-350 degC; a 600 K ambient already anneals it"),
+                      Param("thermal_g_ball_set_w_k", "W/K", 0.5, "ball set to each ring (assumed, docs/designer_models.md)",
+                            upper=1.0e5, why=_SOLID_SHELL),
+                      Param("thermal_h_outer_housing_w_m2k", "W/(m^2 K)", 1000.0, "outer ring to housing over its OD",
+                            upper=1.0e6, why="the best pressed metallic joints measured conduct ~2e5 W/m^2K (contact "
+                            "resistances >= ~5e-6 m^2K/W)"),
+                      Param("thermal_g_housing_frame_w_k", "W/K", 2.0, "housing into the machine frame", upper=1.0e5, why=_SOLID_SHELL),
+                      Param("thermal_housing_capacity_j_k", "J/K", 950.0, "housing heat capacity (2 kg steel)", positive=True,
+                            upper=1.0e8, why="200 t of steel (475 J/kgK): more than any machine frame"),
+                      Param("thermal_width_m", "m", 0.022, "ring width (7212: 22 mm), the sleeve contact length", positive=True,
+                            upper=2.0, why="wider than the largest rolling bearings (~2 m)"))),
 )
 
 
@@ -545,11 +558,17 @@ REGISTRY += (
                   "(rotorlanding/thermal_feedback.py)",
               effect="thermal_feedback", default_on=False,
               params=(Param("thermal_internal_clearance_m", "m", 20.0e-6,
-                            "cold mounted diametral internal clearance of the ball set (assumed 20 um)"),
+                            "cold mounted diametral internal clearance of the ball set (assumed 20 um)", upper=5.0e-3,
+                            why="internal clearance groups stay below ~0.2 % of the bore (ISO 5753 tables); 5 mm is "
+                            "more than that for any bearing up to 2 m"),
                       Param("thermal_axial_mount_stiffness_n_m", "N/m", 5.0e6,
-                            "axial stiffness holding the rings against the preload (rig: the wave spring axial.k_ws)"),
+                            "axial stiffness holding the rings against the preload (rig: the wave spring axial.k_ws)",
+                            upper=1.0e16, why="1e14 N/m already stands for a rigid mount (a ball set's own axial "
+                            "stiffness is ~1e8-1e9 N/m, axial.k_cb)"),
                       Param("thermal_runaway_limit_k", "K", 473.15,
-                            "temperature whose crossing with the ball set preloaded is reported as runaway (200 degC)"))),
+                            "temperature whose crossing with the ball set preloaded is reported as runaway (200 degC)",
+                            upper=900.0, why="bearing steels are tempered at 150-350 degC; above ~900 K the "
+                            "growth laws and the steel's hardness have long failed"))),
 )
 
 

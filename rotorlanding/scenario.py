@@ -289,7 +289,7 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
         axial_face=t.boolean("axial_face", False),
         face_inner_radius=t.number("face_inner_radius", 0.0, **nn),
         face_outer_radius=t.number("face_outer_radius", 0.0, **nn),
-        extra={p.key: t.number(p.key, p.default, **nn) for p in extra_bearing_params()},
+        extra={p.key: _param(t, p) for p in extra_bearing_params()},
     )
     from .rotor import MAX_DIMENSION
 
@@ -302,6 +302,15 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
                          f"with axial_face = true need 0 < face_inner_radius ({b.face_inner_radius}) < face_outer_radius")
     t.finish()
     return b
+
+
+def _param(t: Table, p) -> float:
+    """A registry mechanism's per-bearing input (``mechanisms.Param``): >= 0 (> 0 where zero means
+    nothing), at most its physical maximum, whose reason the one-line error gives."""
+    value = t.number(p.key, p.default, positive=p.positive, nonnegative=True)
+    if value > p.upper:
+        raise InputError(f"{t.path}.{p.key}", value, f"must be <= {p.upper:g} {p.unit}: {p.why}")
+    return value
 
 
 def _drop_offset(value, clearance: float) -> tuple[float, float]:

@@ -24,8 +24,8 @@ docs/designer_models.md):
 
 Operator split: the solver reads these retuned laws, frozen over one coast-down chunk, from the
 temperatures at the chunk's start (the carried state the chunk starts from: a resume reads the same
-values). The feedback lags the temperatures by one chunk: chunk_s (0.05-0.2 s) against the
-network's fastest time constant (~22 s on the rig's defaults), a ratio <= 0.01; a landing run (one
+values). The feedback lags the temperatures by one chunk: chunk_s (1 s in the rig's coast-down)
+against the network's fastest time constant (~22 s on the rig's defaults), a ratio ~0.05; a landing run (one
 solve from the mounting temperature) sees the cold laws, which is what a fraction of a second of
 heating gives (< 1 K). The retuned laws change the elastic energies between chunks (k_b1, the
 clearance): a jump of ~1e-3 J against kJ dissipated, visible in the balance residual.
@@ -120,6 +120,24 @@ def post_feedback(ev, laws) -> None:
     ev.out("journal_clearance_m", np.array([r["journal_clearance"] for r in rows]))
     ev.out("internal_clearance_m", np.array([r["internal_clearance"] for r in rows]))
     ev.out("thermal_preload_n", np.array([r["axial_preload"] for r in rows]))
+
+
+def first_runaway(spec, t, series: dict):
+    """The earliest runaway over the samples ``t`` of the bearings with an active feedback:
+    (bearing name, time [s], reason) or None. A coast-down stops there (beyond it the growth,
+    preload and drag laws are outside their range: 52100 softens, the preload geometry breaks)."""
+    from .mechanisms import thermal_feedback_active
+
+    found = []
+    for b in spec.bearings:
+        if thermal_feedback_active(spec, b.laws):
+            s = summary(t, series, b.name, b.laws)
+            if s["runaway"]:
+                found.append((s["t_runaway_s"], b.name, s["runaway_reason"]))
+    if not found:
+        return None
+    t_r, name, why = min(found)
+    return name, t_r, why
 
 
 def summary(t, series: dict, name: str, laws) -> dict:

@@ -9,7 +9,8 @@ laws (``user_forces``):
   its axial load F_a (the axial contact force where the bearing takes the thrust, plus the thermal
   preload when thermal feedback is on) -> the load of the most loaded ball by the discrete
   Stribeck/Harris distribution (``contact_stress.ball_loads_fast``, compiled; Z balls, the actual
-  internal clearance: the feedback's series, else its cold default 20 um, assumed) -> the Hertz
+  internal clearance: the feedback's series, else its cold default 20 um, assumed; once it is
+  negative the rings move apart axially until the balls carry F_a, preload included) -> the Hertz
   peak pressure p0 = c Q_max^(1/3) on the inner and the outer race (Hertz point contact: p0 ~
   Q^(1/3) exactly, c from ``hertz_point_contact`` at 1 N; 7212 BE internal geometry, assumed:
   docs/designer_models.md). Time and count above the limit (``fatigue.static_exceedance``).
@@ -25,10 +26,15 @@ laws (``user_forces``):
   (ISO 281's variable-load rule as Palmgren-Miner in pressure, N = 1e6 (p_ref/p)^n revolutions,
   p_ref = the law's inner-race pressure at F_r = C) plus the rainflow damage of the inner-race
   pressure envelope (each cycle at its peak); the two added (conservative). Allowable drops =
-  1 / damage; the criterion: allowable >= drops_required.
+  1 / damage; the criterion: allowable >= drops_required. Fatigue only (see below).
 - **whirl**: the landed journal's whirl (direction, frequency, onset) against
   ``whirl_acceptable_below_rpm``: a whirl that starts above that rotor speed fails.
-- **contact force** (only if ``contact_force_n`` > 0).
+- **whirl severity**: the time whirling and (landing runs) the orbit amplitude over the radial
+  clearance (``whirl_time_s``, ``whirl_orbit_over_clearance``), and the **peak contact force** per
+  bearing (``contact_force_n``): judged when their limit is > 0, else reported ('reported' rows).
+
+The allowable drops are rolling-contact fatigue only: wear, cage damage and heat are not in that
+number (the reports say so next to it).
 
 Margin: (limit - value) / limit for a maximum; allowable / required - 1 for the drops. The
 verdict passes when every evaluated criterion passes.
@@ -182,27 +188,42 @@ def bearing_criteria(spec, b, t, s, limits: Limits, summary: dict) -> tuple[list
     return out, {"damage_per_drop": damage, "allowable_drops": allow}
 
 
+def whirl_severity(t, summary: dict, clearance: dict | None = None) -> dict:
+    """Whirl severity of a run from its summary: ``time_whirling_s`` (coast-down: the chunks
+    classified as whirling; landing: persistence x (end - onset)) and, for a landing, the orbit
+    amplitude over the radial clearance of the whirling bearing (``amplitude_over_clearance``);
+    {} when the summary has no whirl record."""
+    out = {}
+    if "whirl_phases" in summary:  # coast-down: per-chunk phases
+        out["time_whirling_s"] = float(sum(ph["t_end_s"] - ph["t_start_s"] for ph in summary["whirl_phases"]
+                                           if ph["direction"] != "none"))
+    elif "whirl" in summary:
+        w = summary.get("whirl") or {}
+        out["time_whirling_s"] = 0.0
+        if w.get("direction", "none") != "none":
+            onset = w.get("onset_s") or float(t[0])
+            end = w.get("end_s") if w.get("end_s") is not None else float(t[-1])
+            out["time_whirling_s"] = float(w.get("persistence") or 0.0) * (end - onset)
+            c = (clearance or {}).get(w.get("bearing"))
+            if w.get("amplitude_m") is not None and c:
+                out["amplitude_over_clearance"] = float(w["amplitude_m"]) / c
+    return out
+
+
 def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None = None) -> dict:
     """The landed journal's whirl against whirl_acceptable_below_rpm (landing or coast-down), with
-    its severity: time whirling and (landing) the orbit amplitude over the radial clearance."""
+    its severity (:func:`whirl_severity`) where it whirls."""
     rpm = np.abs(np.asarray(s["rotor_speed_rpm"]))
     phases = []
-    severity = {}
     if "whirl_phases" in summary:  # coast-down: per-chunk phases
         for ph in summary["whirl_phases"]:
             if ph["direction"] != "none":
                 phases.append((ph["direction"], ph["t_start_s"], ph.get("frequency_hz_median")))
-        severity["time_whirling_s"] = sum(ph["t_end_s"] - ph["t_start_s"] for ph in summary["whirl_phases"]
-                                          if ph["direction"] != "none")
     else:
         w = summary.get("whirl") or {}
         if w.get("direction", "none") != "none":
             phases.append((w["direction"], w.get("onset_s") or float(t[0]), w.get("frequency_hz")))
-            end = w.get("end_s") if w.get("end_s") is not None else float(t[-1])
-            severity["time_whirling_s"] = float(w.get("persistence") or 0.0) * (end - phases[0][1])
-            c = (clearance or {}).get(w.get("bearing"))
-            if w.get("amplitude_m") is not None and c:
-                severity["amplitude_over_clearance"] = float(w["amplitude_m"]) / c
+    severity = whirl_severity(t, summary, clearance)
     worst = None
     for direction, t0, f in phases:
         speed = float(np.interp(t0, t, rpm))
@@ -219,6 +240,15 @@ def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None 
                          "frequency_hz": worst[3], **severity}}
 
 
+def _severity_criterion(name, bearing, value, limit, unit, dominant=None):
+    """A whirl-severity or force figure: judged against ``limit`` when it is > 0, else reported
+    (``judged`` false: it passes, and the reports say 'reported' instead of 'pass')."""
+    if limit > 0:
+        return dict(_max_criterion(name, bearing, value, limit, unit, dominant or {}), judged=True)
+    return {"criterion": name, "bearing": bearing, "value": value, "limit": None, "unit": unit, "margin": None,
+            "pass": True, "judged": False, "dominant": dominant or {}}
+
+
 def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
     """The verdict record (module docstring)."""
     from .mechanisms import thermal_feedback_active
@@ -232,15 +262,23 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
         if thermal_feedback_active(spec, b.laws) and not recorded:
             not_evaluated.append(f"thermal runaway ({b.name}): the run's summary has no thermal record "
                                  "(unfinished run)")
+    clearance = {b.name: b.params.clearance for b in spec.bearings}
     if "whirl_phases" in summary or "whirl" in summary:
-        criteria.append(whirl_criterion(t, s, summary, limits, {b.name: b.params.clearance for b in spec.bearings}))
+        wc = whirl_criterion(t, s, summary, limits, clearance)
+        criteria.append(wc)
+        sev = whirl_severity(t, summary, clearance)
+        criteria.append(_severity_criterion("whirl severity: time whirling", wc["bearing"], sev["time_whirling_s"],
+                                            limits.whirl_time_s, "s"))
+        if "amplitude_over_clearance" in sev:
+            criteria.append(_severity_criterion("whirl severity: orbit amplitude / clearance", wc["bearing"],
+                                                sev["amplitude_over_clearance"], limits.whirl_orbit_over_clearance,
+                                                "-"))
     else:
         not_evaluated.append("whirl: the run's summary has no whirl record (an unfinished coast-down classifies its "
                              "whirl phases at the end)")
-    if limits.contact_force_n > 0:
-        for name, bs in (summary.get("bearings") or {}).items():
-            criteria.append(_max_criterion("contact force", name, bs["max_contact_force_n"], limits.contact_force_n,
-                                           "N", {}))
+    for name, bs in (summary.get("bearings") or {}).items():
+        criteria.append(_severity_criterion("peak contact force", name, bs["max_contact_force_n"],
+                                            limits.contact_force_n, "N"))
     allow = min((d["allowable_drops"] for d in damage.values() if d["allowable_drops"] is not None), default=None)
     failed = [c for c in criteria if not c["pass"]]
     return {"scenario": spec.scenario.name, "kind": summary.get("kind", "landing"),
@@ -273,7 +311,7 @@ def _fmt(v, unit):
         return f"{v:.3g}"
     if unit == "s":
         return f"{v:.3f} s"
-    return f"{v:.4g} {unit}"
+    return f"{v:.4g}" if unit == "-" else f"{v:.4g} {unit}"
 
 
 def _margin(c) -> str:
@@ -284,12 +322,23 @@ def _margin(c) -> str:
     return f"{100 * c['margin']:+.0f} %"
 
 
+FATIGUE_ONLY = ("This number counts rolling-contact fatigue (ISO 281 stress-life, Palmgren-Miner) and nothing "
+                "else: wear of the sleeve and races, cage damage and heat are not in it (the temperature and runaway "
+                "rows judge the heat; wear and the cage are not modelled).")
+
+
+def _result(c) -> str:
+    if not c.get("judged", True):
+        return "reported"
+    return "pass" if c["pass"] else "FAIL"
+
+
 def markdown(v: dict) -> str:
     lines = [f"# Verdict: {v['scenario']} ({v['kind']})", "",
              f"**{v['verdict'].upper()}**" + (f": fails {', '.join(v['failed'])}" if v["failed"] else
                                              ": every criterion within its limit"),
-             "", f"Allowable drops (fatigue, the weakest bearing): "
-             f"{_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']}).",
+             "", f"Allowable drops, rolling-contact fatigue only (the weakest bearing): "
+             f"{_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']}). {FATIGUE_ONLY}",
              "" if v["complete"] else f"\nThe run is INCOMPLETE (reached {v['t_reached_s']:.3f} s): the verdict covers "
              "only the part simulated.", *[f"\nNot evaluated: {x}" for x in v["not_evaluated"]], "",
              "| criterion | bearing | value | limit | margin | result | dominated by |", "|---|---|---|---|---|---|---|"]
@@ -298,7 +347,7 @@ def markdown(v: dict) -> str:
         margin = _margin(c)
         lines.append(f"| {c['criterion']} | {c['bearing'] or '-'} | {_fmt(c['value'], c['unit'])} | "
                      f"{_fmt(c['limit'], c['unit']) if c['limit'] is not None else '-'} | {margin} | "
-                     f"{'pass' if c['pass'] else 'FAIL'} | {dom} |")
+                     f"{_result(c)} | {dom} |")
     lines += ["", "Limits and their sources:", ""]
     lines += [f"- `{k}` = {x['value']}: {x['source']}" for k, x in v["limits"].items()]
     lines += ["", "Laws, sources and assumptions: docs/designer_models.md; the verdict's rules: rotorlanding/verdict.py."]
@@ -377,10 +426,11 @@ def format_lines(v: dict) -> list[str]:
     lines = [f"verdict: {v['verdict'].upper()}" + (f" ({', '.join(v['failed'])})" if v["failed"] else "")
              + ("" if v["complete"] else f" [INCOMPLETE run: up to {v['t_reached_s']:.3f} s]"),
              *[f"not evaluated: {x}" for x in v["not_evaluated"]],
-             f"allowable drops (fatigue): {_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']})"]
+             f"allowable drops (rolling-contact fatigue only; not wear, cage or heat): "
+             f"{_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']})"]
     for c in v["criteria"]:
         margin = "" if c["margin"] is None else f", margin {_margin(c)}"
         lim = "" if c["limit"] is None else f" / limit {_fmt(c['limit'], c['unit'])}"
-        lines.append(f"  {'pass' if c['pass'] else 'FAIL'}  {c['criterion']} [{c['bearing'] or '-'}]: "
+        lines.append(f"  {_result(c)}  {c['criterion']} [{c['bearing'] or '-'}]: "
                      f"{_fmt(c['value'], c['unit'])}{lim}{margin}")
     return lines

@@ -101,6 +101,11 @@ RUN_SET_CASES += [
     (["nosuch.table=1"], ["nosuch.table"]),
     (["effects.no_effect=true"], ["effects.no_effect"]),
     (["effects.windage=3"], ["effects.windage"]),
+    # issue 18: the verdict's whirl-severity limits and a thermal capacity that cannot be zero
+    (["limits.whirl_time_s=-1"], ["limits.whirl_time_s"]),
+    (["limits.whirl_orbit_over_clearance=nan"], ["limits.whirl_orbit_over_clearance"]),
+    (["bearings.NDE.thermal_housing_capacity_j_k=0"], ["bearings.NDE.thermal_housing_capacity_j_k"]),
+    (["bearings.DE.thermal_width_m=0"], ["bearings.DE.thermal_width_m"]),
 ]
 
 #: whole-file mutations of a scenario: (name, bytes or a function of the original text, field)
@@ -745,7 +750,7 @@ def test_every_shipped_input_still_loads():
             kinds["paper numbers"] += 1
         else:
             kinds["other"] += 1  # the measured feature table
-    assert kinds == {"scenario": 7, "coastdown": 1, "rotor": 2, "fit-modes space": 4, "sweep": 1,
+    assert kinds == {"scenario": 7, "coastdown": 2, "rotor": 2, "fit-modes space": 4, "sweep": 1,
                      "calibration space": 4, "paper numbers": 1, "other": 1, "rig overlay": 1, "whirl map": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():

@@ -124,3 +124,31 @@ def test_heat_by_route_adds_up_to_the_heat_in(landing):
         routes = sum(s[f"{b}_{r}"][-1] for r in ROUTE_SERIES)
         assert routes == pytest.approx(s[f"{b}_heat_in_j"][-1], rel=1e-12)
         assert s[f"{b}_heat_sleeve_contact_j"][-1] > 0.5 * s[f"{b}_heat_in_j"][-1]  # the landed sleeve dominates
+
+
+def test_a_hot_bearing_with_feedback_keeps_its_heat_capacities(landing):
+    """With thermal feedback the solver's laws carry the grown sleeve and bore; the network must
+    still be the cold geometry's (the rings' masses do not change), so heat in = stored (cold
+    capacities) + lost holds to round-off from a hot carried state too (it missed by 2.9e-4 in a
+    wired runaway)."""
+    from rotorlanding.mechanisms import retuned_spec
+
+    sc, _, t, q, v, _ = landing
+    spec = build_spec(load_scenario(LANDING, ["operating.t_end=0.03", "effects.thermal_feedback=true"]))
+    rise = {"sleeve": 150.0, "inner_ring": 120.0, "ball_set": 100.0, "outer_ring": 30.0, "housing": 10.0}
+    carry = {}
+    for b in spec.bearings:
+        ta = b.laws.extra["thermal_ambient_k"]
+        carry.update({f"{b.name}_temperature_{n}_k": ta + d for n, d in rise.items()})
+        carry.update({f"{b.name}_{n}": 0.0 for n in ("heat_in_j", "heat_lost_j", "heat_sleeve_contact_j",
+                                                     "heat_face_rub_j", "heat_ball_contacts_j",
+                                                     "heat_outer_support_j")})
+    hot = retuned_spec(spec, carry)
+    assert hot.bearings[0].laws.sleeve_radius > spec.bearings[0].laws.sleeve_radius  # the feedback grew it
+    s = evaluate(hot, t, q, v, carry=carry)
+    for b in spec.bearings:
+        cap = np.array(network_for(b.laws).capacity)  # the cold laws' network
+        temps = np.column_stack([s[b.name + "_" + n] for n in NODE_SERIES])
+        stored = float(np.sum(cap * (temps[-1] - temps[0])))
+        hin, lost = s[b.name + "_heat_in_j"][-1], s[b.name + "_heat_lost_j"][-1]
+        assert abs(hin - stored - lost) < 1e-9 * max(abs(hin), abs(lost))

@@ -90,3 +90,19 @@ def test_rig_value_check_flags_an_uncalibrated_value_outside_its_bound(tmp_path)
     n_in, n = (int(w) for w in ok["ours"].split(" bounded")[0].split(" of "))
     assert n > 20 and n_in == n - len({o.split(" =")[0] for o in ok["ours"].split(": ", 1)[1].split("; ")}) \
         if n_in < n else ok["pass"]
+
+
+def test_every_thermal_input_of_the_rig_has_a_sourced_bound():
+    """Issue 18: every parameter of the thermal network (catcher_thermal) and of the thermal
+    feedback is an assumed input of the rig; each must be bounded, with its source, for both
+    bearings, and the rig's value must lie inside."""
+    from rotorlanding.mechanisms import REGISTRY
+
+    sc = load_scenario(PAPER / "forward_whirl_landing.toml")
+    keys = [p.key for m in REGISTRY if m.name in ("catcher_thermal", "thermal_feedback") for p in m.params]
+    assert len(keys) == 9
+    for b in ("DE", "NDE"):
+        for k in keys:
+            bound = sc.bounds.get(f"bearings.{b}.{k}")
+            assert bound is not None and bound.source, f"bearings.{b}.{k}"
+            assert bound.min <= get_dotted(sc.raw, f"bearings.{b}.{k}") <= bound.max, f"bearings.{b}.{k}"

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from user_forces.contact_stress import (BEARING_7212BE_ASSUMED, ISO76_BALL_PA, STRIBECK_ZERO_CLEARANCE,
-                                        BallBearingGeometry, ball_load_distribution, ball_race_contact,
+                                        BallBearingGeometry, ball_load_distribution, ball_loads_fast, ball_race_contact,
                                         ball_race_peak_pressures, ball_stiffness_kn, conformal_radius,
                                         effective_modulus, elliptic_ke, hertz_point_contact, line_contact,
                                         load_zone_integral, race_radii, sleeve_ring_crowned, sleeve_ring_line)
@@ -223,3 +223,21 @@ def test_line_contact_is_the_slender_limit_of_the_elliptical_solution():
     p0c, _, bc, _ = hertz_point_contact(1000.0, rx, 1e2 * rx, E_STAR)
     plc, blc = line_contact(math.pi * p0c * bc / 2, 1.0, rx, E_STAR)
     assert abs(plc / p0c - 1) > 10 * abs(pl / p0 - 1)               # converging, not coincidence
+
+
+@pytest.mark.parametrize("f_axial", [40.0e3, 5.0e3])
+def test_ball_loads_with_an_interference_carry_the_axial_load_closed_form(f_axial):
+    """A thermal preload makes the internal clearance negative (rotorlanding.verdict passes it to the
+    leaf). Pure axial load on Z equal balls: Q = F_a / (Z sin a) exactly, and the axial approach
+    delta_a satisfies (Q / K_n)^(2/3) = delta_a sin a - P_d/2 cos a: positive when F_a exceeds what
+    the interference alone induces (40 kN), negative (the rings move apart) when below (5 kN).
+    Found broken: the doubling bracket started at (F / Z K_n)^(2/3) + P_d < 0 and ran off to 1e55."""
+    geom = BEARING_7212BE_ASSUMED
+    k_n = ball_stiffness_kn(geom)
+    a = math.radians(geom.contact_angle_deg)
+    p_d = -100e-6
+    q, dr, da, fa = ball_loads_fast(0.0, f_axial, geom.n_balls, a, k_n, p_d, 0.0)
+    assert q == pytest.approx(f_axial / (geom.n_balls * math.sin(a)), rel=1e-9)
+    assert fa == pytest.approx(f_axial, rel=1e-9) and dr == 0.0
+    assert da * math.sin(a) - 0.5 * p_d * math.cos(a) == pytest.approx((q / k_n) ** (2.0 / 3.0), rel=1e-9)
+    assert (da > 0) == (f_axial > geom.n_balls * k_n * (-0.5 * p_d * math.cos(a)) ** 1.5 * math.sin(a))

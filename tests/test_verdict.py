@@ -155,3 +155,39 @@ def test_an_unfinished_run_says_what_it_could_not_judge(spec):
     assert not any(c["criterion"] == "whirl" for c in v["criteria"])
     assert any(x.startswith("whirl") for x in v["not_evaluated"]) and not v["complete"]
     assert "INCOMPLETE" in vd.markdown(v) and "Not evaluated: whirl" in vd.markdown(v)
+
+
+def test_whirl_severity_and_peak_force_are_reported_and_judged_when_limited(spec):
+    """Whirl severity (time whirling, orbit amplitude / clearance) and the peak contact force are
+    rows of every verdict: 'reported' while their limit is 0, judged (and failed, named) once a
+    limit is set; values by hand: 0.5 x (0.5 - 0.1) s = 0.2 s, 1.5e-4 / 2e-4 = 0.75."""
+    t = np.linspace(0.0, 1.0, 11)
+    summary = {"whirl": {"direction": "forward", "onset_s": 0.1, "end_s": 0.5, "persistence": 0.5,
+                         "frequency_hz": 60.0, "amplitude_m": 1.5e-4, "bearing": "DE"},
+               "bearings": {"DE": {"max_contact_force_n": 1500.0}, "NDE": {"max_contact_force_n": 900.0}}}
+    s = _record(spec, np.full(11, 500.0), t)
+    v = vd.evaluate(spec, t, s, summary, Limits(whirl_acceptable_below_rpm=1e4))
+    rows = {(c["criterion"], c["bearing"]): c for c in v["criteria"]}
+    tw = rows[("whirl severity: time whirling", "DE")]
+    orbit = rows[("whirl severity: orbit amplitude / clearance", "DE")]
+    force = rows[("peak contact force", "DE")]
+    assert tw["value"] == pytest.approx(0.2) and orbit["value"] == pytest.approx(0.75)
+    assert force["value"] == 1500.0 and rows[("peak contact force", "NDE")]["value"] == 900.0
+    assert not any(c["judged"] for c in (tw, orbit, force)) and v["verdict"] == "pass"
+    assert "| reported |" in vd.markdown(v)
+    strict = Limits(whirl_acceptable_below_rpm=1e4, whirl_time_s=0.1, whirl_orbit_over_clearance=0.8,
+                    contact_force_n=1000.0)
+    v2 = vd.evaluate(spec, t, s, summary, strict)
+    assert v2["verdict"] == "fail"
+    assert set(v2["failed"]) == {"whirl severity: time whirling (DE)", "peak contact force (DE)"}
+    orbit2 = next(c for c in v2["criteria"] if c["criterion"].startswith("whirl severity: orbit"))
+    assert orbit2["pass"] and orbit2["margin"] == pytest.approx((0.8 - 0.75) / 0.8)
+
+
+def test_the_report_says_the_allowable_drops_are_fatigue_only(spec):
+    t = np.linspace(0.0, 0.01, 11)
+    v = vd.evaluate(spec, t, _record(spec, np.full(11, 1000.0), t), {"whirl": {"direction": "none"}}, Limits())
+    md = vd.markdown(v)
+    line = next(x for x in md.splitlines() if x.startswith("Allowable drops"))
+    assert "rolling-contact fatigue only" in line and "wear" in line and "cage" in line and "heat" in line
+    assert "rolling-contact fatigue only" in vd.format_lines(v)[1 + len(v["not_evaluated"])]

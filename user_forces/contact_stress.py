@@ -346,7 +346,7 @@ def ball_loads_fast(f_radial, f_axial, n_balls, contact_angle_rad, k_n, clearanc
 
     Nested bisections: delta_r for F_r at a given delta_a (the radial sum rises with delta_r), and
     delta_a for F_a (the axial sum at the matching delta_r rises with delta_a); each bracket is
-    grown by doubling from the Hertz scale (F / (Z K_n))^(2/3) + P_d."""
+    grown by doubling from the Hertz scale (F / (Z K_n))^(2/3) + max(P_d, 0)."""
     ca = cos(contact_angle_rad)
     sa = sin(contact_angle_rad)
 
@@ -386,23 +386,32 @@ def ball_loads_fast(f_radial, f_axial, n_balls, contact_angle_rad, k_n, clearanc
     if f_radial <= 0.0 and f_axial <= 0.0:
         return 0.0, 0.0, 0.0, 0.0
     big = f_radial if f_radial > f_axial else f_axial
-    scale = (big / (n_balls * k_n)) ** (2.0 / 3.0) + clearance_diametral
+    # the brackets grow by doubling, so the start must be > 0: an interference (P_d < 0, a thermal
+    # preload) already compresses every ball at zero displacement and adds nothing to it
+    scale = (big / (n_balls * k_n)) ** (2.0 / 3.0) + (clearance_diametral if clearance_diametral > 0.0 else 0.0)
     dr0 = dr_for(0.0, scale)
     fr0, fa0, q0 = sums(dr0, 0.0)
-    if f_radial > 0.0 and fa0 >= f_axial:
+    if clearance_diametral < 0.0 and fa0 >= f_axial:
+        # interference (a thermal preload): the rings move apart axially (delta_a < 0) until the
+        # balls carry f_axial, which must then include the preload the mounting holds; at
+        # delta_a = P_d cos a / (2 sin a) the interference is taken up and no ball is compressed
+        # by it (only by delta_r)
+        lo, hi = 0.5 * clearance_diametral * ca / sa, 0.0
+    elif f_radial > 0.0 and fa0 >= f_axial:
         return q0, dr0, 0.0, fa0                 # held axially: carries its induced thrust
-    lo, hi = 0.0, scale
-    for _ in range(200):
-        if sums(dr_for(hi, scale), hi)[1] >= f_axial:
-            break
-        lo, hi = hi, 2.0 * hi
+    else:
+        lo, hi = 0.0, scale
+        for _ in range(200):
+            if sums(dr_for(hi, scale), hi)[1] >= f_axial:
+                break
+            lo, hi = hi, 2.0 * hi
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if sums(dr_for(mid, scale), mid)[1] < f_axial:
             lo = mid
         else:
             hi = mid
-        if hi - lo <= 1e-15 * hi:
+        if hi - lo <= 1e-15 * max(abs(hi), abs(lo)):
             break
     da = 0.5 * (lo + hi)
     dr = dr_for(da, scale)
