@@ -55,7 +55,10 @@ def cases() -> list[dict]:
             ("ball_drag", "windage", ["bearings.DE.hp_z", "bearings.NDE.hp_z"], 1.5e-2, 4e-3, False),
             ("radial_friction", "windage", ["contact.mu_rad"], 0.3, 0.1, False),
             ("axial_rub", "outer_race_coulomb", ["contact.mu_ax"], 0.3, 0.12, True),
-            ("outer_race_coulomb", "axial_rub", ["bearings.NDE.mu_d"], 0.3, 0.12, True),
+            # decoy windage, not axial rub: round 1 had axial rub off in the rig too, and without it the
+            # rig does not whirl, so the outer race's friction (it damps the whirl orbit) left gaps of
+            # 0.31 / 0.24, no signal to find (benchmarks/results/diagnose_bench_round1.md)
+            ("outer_race_coulomb", "windage", ["bearings.NDE.mu_d"], 0.3, 0.12, True),
             ("contact_damping", "ribbon_cross_coupling", ["contact.k_visc"], 5e12, 5e11, False),
             ("ribbon_cross_coupling", "contact_damping", ["bearings.DE.eta", "bearings.NDE.eta"], 0.4, 0.2, False)):
         for level, v in (("strong", strong), ("weak", weak)):
