@@ -691,11 +691,13 @@ def rotor_force(series: dict, bearing: str) -> tuple:
     return fy, fz
 
 
-def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None) -> dict:
+def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None,
+             skip: frozenset | tuple = ()) -> dict:
     """Every series of the schema on the stored states: each active mechanism's ``post`` hook, rotor
     scope first, then per bearing in registry order; an inactive one leaves its zeros. ``carry``:
     the values the carried series (:func:`carried_series`) start from (a coast-down chunk's
-    previous row); None: their initial state."""
+    previous row); None: their initial state. ``skip``: mechanisms whose post hook is not run (their
+    series stay zero), for a caller that reads none of their outputs (diagnose's features)."""
     nt = len(t)
     names = list(series_units(spec.bearing_names))
     ev = Evaluation(spec, t, q, v, series={k: np.zeros(nt) for k in names},
@@ -703,14 +705,14 @@ def evaluate(spec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | No
                     inputs={e: np.zeros(nt) for e in input_entries()}, ekin=np.zeros(nt), epot=np.zeros(nt),
                     carry=carry)
     for m in REGISTRY:
-        if m.scope == "rotor" and m.post is not None and m.active(spec, spec.rotor_laws):
+        if m.scope == "rotor" and m.post is not None and m.name not in skip and m.active(spec, spec.rotor_laws):
             m.post(ev, spec.rotor_laws)
     for b in spec.bearings:
         ev.bearing = b
         ev.bpower = {}
         ev.kin = _kinematics(ev, b)
         for m in REGISTRY:
-            if m.scope == "bearing" and m.post is not None and m.active(spec, b.laws):
+            if m.scope == "bearing" and m.post is not None and m.name not in skip and m.active(spec, b.laws):
                 m.post(ev, b.laws)
         pre = b.name + "_"
         s, r = b.i_station, b.i_race

@@ -35,11 +35,13 @@ INPUTS = input_entries()
 __all__ = ["MECHANISMS", "INPUTS", "axial_potential", "evaluate", "energy_summary", "summarize", "uniform"]
 
 
-def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None) -> dict:
+def evaluate(spec: LandingSpec, t: np.ndarray, q: np.ndarray, v: np.ndarray, carry: dict | None = None,
+             skip: frozenset | tuple = ()) -> dict:
     """Time series of forces, torques, powers and energies (SI), keyed by name; the names and
     units are :func:`rotorlanding.mechanisms.series_units`; ``carry``: the carried states' start
-    values (a coast-down chunk; :func:`rotorlanding.mechanisms.evaluate`)."""
-    return _evaluate(spec, t, q, v, carry)
+    values (a coast-down chunk; :func:`rotorlanding.mechanisms.evaluate`); ``skip``: mechanisms
+    whose post-processing is left out (their series stay zero)."""
+    return _evaluate(spec, t, q, v, carry, skip)
 
 
 def energy_summary(series: dict) -> dict:

@@ -25,9 +25,10 @@ CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inn
 
 
 def write_record(scenario, overrides, csv, *, clearance, seed=0, fs_hz=4000.0, noise_m=1.0e-6, noise_rpm=2.0,
-                 pre_trigger_s=0.2, drop_at_s=3.0, channels=CHANNELS):
+                 pre_trigger_s=0.2, drop_at_s=3.0, channels=CHANNELS, noise_by_channel=None):
     """Simulate ``scenario`` with ``overrides`` and write what the logger saw; returns the drop
-    instant in the logger's clock (the truth)."""
+    instant in the logger's clock (the truth). ``noise_by_channel`` (name -> standard deviation)
+    replaces ``noise_m`` / ``noise_rpm`` for the channels it names (a rig's sensors differ)."""
     rng = np.random.default_rng(seed)
     _, m = _simulate_features(scenario, list(overrides), clearance, with_series=True)
     t_sim = m.series("DE_z_m")[0]
@@ -38,7 +39,8 @@ def write_record(scenario, overrides, csv, *, clearance, seed=0, fs_hz=4000.0, n
         ts, v = m.series(name)
         before = 0.0 if name.endswith("_m") else float(v[0])  # levitated at the centre, speeds as at the drop
         vu = np.where(t < ts[0], before, np.interp(t, ts, v))
-        cols.append(vu + rng.normal(0.0, noise_m if name.endswith("_m") else noise_rpm, t.size))
+        sigma = (noise_by_channel or {}).get(name, noise_m if name.endswith("_m") else noise_rpm)
+        cols.append(vu + rng.normal(0.0, sigma, t.size))
     np.savetxt(csv, np.column_stack(cols), delimiter=",", header=",".join(("time_s",) + tuple(channels)),
                comments="")
     return drop_at_s
