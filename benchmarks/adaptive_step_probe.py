@@ -33,6 +33,35 @@ from rotorlanding import exudyn_model as em
 from rotorlanding.run import build_summary
 
 
+def probe_hook(mbs, spec, tol, count):
+    """Session 11's PostNewton function: local position error h^2/6 |a_end - a_start| (spin angle
+    excluded) over ``tol``; above 1 it recommends h max(0.2, 0.9 e^(-1/3)) and counts the request in
+    ``count[0]`` (which Exudyn ignores under :func:`probe_settings`: the module docstring)."""
+    sd = mbs.systemData
+    SOS = exu.ConfigurationType.StartOfStep
+
+    def post(mbs_, t):
+        h = mbs_.sys["dynamicSolver"].it.currentStepSize
+        err = (h * h / 6.0) * np.abs(sd.GetODE2Coordinates_tt() - sd.GetODE2Coordinates_tt(SOS))
+        err[spec.i_theta] = 0.0
+        e = err.max() / tol
+        if e > 1.0 and h > 2e-6:
+            count[0] += 1
+            return [0.0, max(h * 0.2, h * 0.9 * e ** (-1.0 / 3.0), 1e-6)]
+        return [0.0, -1.0]
+    return post
+
+
+def probe_settings(ss):
+    """The probe's discontinuous-iteration settings (one iteration: the recommendation is ignored)."""
+    ti = ss.timeIntegration
+    ti.discontinuous.useRecommendedStepSize = True
+    ti.discontinuous.iterationTolerance = 1e10
+    ti.discontinuous.maxIterations = 1
+    ti.adaptiveStepRecoverySteps = 5
+    ti.minimumStepSize = 1e-7
+
+
 def probe(path, mode, t_end, tol=1e-7, hmax=2e-4, extra=()) -> dict:
     """One landing of ``path`` at a fixed step (mode ``fixedH``) or with the controller (``adaptive``);
     returns the line the command prints."""
@@ -47,30 +76,10 @@ def probe(path, mode, t_end, tol=1e-7, hmax=2e-4, extra=()) -> dict:
         st_.output_period = max(st_.output_period, st_.step)
     else:
         st_.step = hmax
-        mbs = m.mbs; sd = mbs.systemData
-        SOS = exu.ConfigurationType.StartOfStep
-        nl = spec.n_lat
-        # error scale per coordinate: lateral/race positions tol [m]; spin angle / axial: tol too
-        def post(mbs_, t):
-            it = mbs.sys['dynamicSolver'].it
-            h = it.currentStepSize
-            a1 = sd.GetODE2Coordinates_tt(); a0 = sd.GetODE2Coordinates_tt(SOS)
-            err = (h * h / 6.0) * np.abs(a1 - a0)
-            err[spec.i_theta] = 0.0
-            e = err.max() / tol
-            if e > 1.0 and h > 2e-6:
-                rejects[0] += 1
-                return [0.0, max(h * 0.2, h * 0.9 * e ** (-1.0 / 3.0), 1e-6)]
-            return [0.0, -1.0]
-        mbs.SetPostNewtonUserFunction(post)
+        m.mbs.SetPostNewtonUserFunction(probe_hook(m.mbs, spec, tol, rejects))
     ss = st_.apply(exu, 0.0, sc.t_end)
     if not mode.startswith("fixed"):
-        ti = ss.timeIntegration
-        ti.discontinuous.useRecommendedStepSize = True
-        ti.discontinuous.iterationTolerance = 1e10
-        ti.discontinuous.maxIterations = 1
-        ti.adaptiveStepRecoverySteps = 5
-        ti.minimumStepSize = 1e-7
+        probe_settings(ss)
     exu.config.suppressWarnings = True
     w0 = time.perf_counter()
     res = exu.SolveDynamic(m.mbs, ss)

@@ -27,7 +27,6 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -51,7 +50,6 @@ def _sets(variant: str) -> list[str]:
 def worker(job: dict) -> dict:
     load = os.getloadavg()[0]
     import exudyn as exu
-    import numpy as np
 
     from rotorlanding import exudyn_model as em
     from rotorlanding.landing import build_spec
@@ -80,31 +78,15 @@ def worker(job: dict) -> dict:
 
         em.SolverSettings.apply = apply
     if variant.startswith("probe"):
-        # session 11's probe, unchanged: recommendation returned, error 0, one discontinuous iteration
-        sd = model.mbs.systemData
-        SOS = exu.ConfigurationType.StartOfStep
-        tol = sc.solver.step_tolerance
+        # session 11's probe, unchanged (its hook and settings from adaptive_step_probe): recommendation
+        # returned, error 0, one discontinuous iteration
+        from adaptive_step_probe import probe_hook, probe_settings
+
         asked = [0]
-
-        def post(mbs_, t):
-            it = mbs_.sys["dynamicSolver"].it
-            h = it.currentStepSize
-            err = (h * h / 6.0) * np.abs(sd.GetODE2Coordinates_tt() - sd.GetODE2Coordinates_tt(SOS))
-            err[spec.i_theta] = 0.0
-            e = err.max() / tol
-            if e > 1.0 and h > 2e-6:
-                asked[0] += 1
-                return [0.0, max(h * 0.2, h * 0.9 * e ** (-1.0 / 3.0), 1e-6)]
-            return [0.0, -1.0]
-
+        post = probe_hook(model.mbs, spec, sc.solver.step_tolerance, asked)
         model.mbs.SetPostNewtonUserFunction(acc and em._timed(post, acc, "postnewton") or post)
         ss = settings.apply(exu, 0.0, sc.t_end)
-        ti = ss.timeIntegration
-        ti.discontinuous.useRecommendedStepSize = True
-        ti.discontinuous.iterationTolerance = 1e10
-        ti.discontinuous.maxIterations = 1
-        ti.adaptiveStepRecoverySteps = 5
-        ti.minimumStepSize = 1e-7
+        probe_settings(ss)
         ss.timeIntegration.verboseMode = 0
         exu.config.suppressWarnings = True
         w0 = time.perf_counter()
@@ -163,12 +145,9 @@ def run_job(job: dict) -> dict:
 
 
 def _run_job(job: dict) -> dict:
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    r = subprocess.run([sys.executable, __file__, "--worker", json.dumps(job)], capture_output=True, text=True,
-                       env=env, cwd=ROOT)
-    if r.returncode != 0:
-        raise RuntimeError(f"worker failed: {job}\n{r.stderr[-3000:]}")
-    return json.loads(r.stdout.strip().splitlines()[-1])
+    from landing_speed import run_worker
+
+    return run_worker(__file__, job)
 
 
 def profile(a):

@@ -140,13 +140,19 @@ def worker(job: dict) -> dict:
     return out
 
 
-def run_job(job: dict) -> dict:
+def run_worker(script, job: dict) -> dict:
+    """Run ``script --worker JOB`` in a fresh process (one landing, its own imports and JIT caches)
+    and return the JSON of its last output line; shared with benchmarks/auto_step.py."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    r = subprocess.run([sys.executable, __file__, "--worker", json.dumps(job)], capture_output=True, text=True,
+    r = subprocess.run([sys.executable, str(script), "--worker", json.dumps(job)], capture_output=True, text=True,
                        env=env, cwd=ROOT)
     if r.returncode != 0:
-        raise RuntimeError(f"worker failed: {job}\n{r.stderr[-2000:]}")
+        raise RuntimeError(f"worker failed: {job}\n{r.stderr[-3000:]}")
     return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def run_job(job: dict) -> dict:
+    return run_worker(__file__, job)
 
 
 def best_of(job: dict, repeat: int) -> dict:

@@ -210,9 +210,10 @@ def whirl_severity(t, summary: dict, clearance: dict | None = None) -> dict:
     return out
 
 
-def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None = None) -> dict:
+def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None = None,
+                    severity: dict | None = None) -> dict:
     """The landed journal's whirl against whirl_acceptable_below_rpm (landing or coast-down), with
-    its severity (:func:`whirl_severity`) where it whirls."""
+    its severity (:func:`whirl_severity`, or the caller's when it has it) where it whirls."""
     rpm = np.abs(np.asarray(s["rotor_speed_rpm"]))
     phases = []
     if "whirl_phases" in summary:  # coast-down: per-chunk phases
@@ -223,7 +224,8 @@ def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None 
         w = summary.get("whirl") or {}
         if w.get("direction", "none") != "none":
             phases.append((w["direction"], w.get("onset_s") or float(t[0]), w.get("frequency_hz")))
-    severity = whirl_severity(t, summary, clearance)
+    if severity is None:
+        severity = whirl_severity(t, summary, clearance)
     worst = None
     for direction, t0, f in phases:
         speed = float(np.interp(t0, t, rpm))
@@ -264,9 +266,9 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
                                  "(unfinished run)")
     clearance = {b.name: b.params.clearance for b in spec.bearings}
     if "whirl_phases" in summary or "whirl" in summary:
-        wc = whirl_criterion(t, s, summary, limits, clearance)
-        criteria.append(wc)
         sev = whirl_severity(t, summary, clearance)
+        wc = whirl_criterion(t, s, summary, limits, clearance, sev)
+        criteria.append(wc)
         criteria.append(_severity_criterion("whirl severity: time whirling", wc["bearing"], sev["time_whirling_s"],
                                             limits.whirl_time_s, "s"))
         if "amplitude_over_clearance" in sev:

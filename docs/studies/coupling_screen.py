@@ -11,8 +11,7 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, "docs/studies")
-import modal_screen as ms  # noqa: E402
+import modal_screen as ms  # the sibling study tool (this script's folder is on sys.path when run)
 
 
 def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
