@@ -505,7 +505,7 @@ class Diagnosis:
 def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: float | None = None,
              candidates=None, max_effects: int = 1, workers: int = 2, maxiter: int = 10,
              time_offset_s: float | None = None, parameters=None, noise_gap: float | None = None,
-             ensemble: int = 1) -> Diagnosis:
+             ensemble: int = 1, journals=("DE",)) -> Diagnosis:
     """Model-gap diagnosis: which effect the model lacks explains where it and a measurement
     disagree (``rotorlanding diagnose``: the same code and files, ``out_dir``/report.json,
     report.md, overlay.png or features.png).
@@ -529,6 +529,8 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
         noise_gap: the gap below which a disagreement is noise (``--noise-gap``; None: estimated
             from the model's drops with the record's noise).
         ensemble: drops per feature evaluation (``--ensemble``; 1: one drop).
+        journals: whose per-journal features are compared (``--journals``): ``("DE",)`` or
+            ``("DE", "NDE")`` (the NDE's landing depth, mean orbit, impact force, race spin-up).
 
     Returns a :class:`Diagnosis` (``.named_effect``, ``.gap_before`` / ``.gap_after``,
     ``.calibrated``, ``.plot_features()``); its report equals the command's on the same input
@@ -555,5 +557,5 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
                  t_end=_seconds("t_end", t_end),
                  candidates=candidates, max_effects=max_effects, workers=workers, maxiter=maxiter,
                  time_offset_s=time_offset_s, parameters=parameters, noise_gap=noise_gap, ensemble=ensemble,
-                 cli_names=False)
+                 journals=journals.split(",") if isinstance(journals, str) else journals, cli_names=False)
     return Diagnosis(out_dir)

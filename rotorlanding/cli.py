@@ -321,7 +321,8 @@ def cmd_diagnose(args) -> int:
                               candidates=cands, max_effects=args.max_effects, workers=args.workers,
                               maxiter=args.maxiter, time_offset_s=args.time_offset_s, parameters=params,
                               noise_gap=args.noise_gap, ensemble=args.ensemble,
-                              ensemble_radius_m=args.ensemble_radius_m)
+                              ensemble_radius_m=args.ensemble_radius_m,
+                              journals=[j.strip() for j in args.journals.split(",") if j.strip()])
     out = args.out
     for w in res["warnings"]:
         print(f"rotorlanding: warning: {w}", file=sys.stderr)
@@ -334,6 +335,9 @@ def cmd_diagnose(args) -> int:
         print(f"  {n}: {res['signatures'][n]}")
     for q in res["named_parameters"]:
         print(f"  parameter {q['key']}: {q['from']} -> {q['to']:.4g} (bound {q['bound'][0]:g}-{q['bound'][1]:g})")
+    if res["decisive_features"] and (res["named_effects"] or res["named_parameters"]):
+        print("  decided on: " + ", ".join(f"{d['feature']}" + (f" ({d['point']})" if d["point"] else "")
+                                          + f" {100 * d['share']:.0f} %" for d in res["decisive_features"]))
     if res["unexplained"]:
         print(f"  unexplained: the gap {res['gap_after']:.3f} stays above the noise gate; largest in "
               + ", ".join(r["feature"] + (f" ({r['point']})" if r["point"] else "") for r in res["largest_remaining"]))
@@ -487,6 +491,9 @@ def build_parser() -> argparse.ArgumentParser:
                          "statistics, a gap smooth in the parameters (default 1: one drop)")
     dg.add_argument("--ensemble-radius-m", type=float, default=None,
                     help="radius of the drop circle of --ensemble [m] (default 5e-6, an AMB's position error)")
+    dg.add_argument("--journals", default="DE",
+                    help="journals whose features are compared: DE (default) or DE,NDE (the NDE's landing depth, "
+                         "mean orbit, impact force and race spin-up; the whirl rows are the DE's)")
     dg.add_argument("--noise-gap", type=float, default=None,
                     help="noise gate (default: estimated from the model's drops and the record's noise)")
     dg.set_defaults(func=cmd_diagnose)

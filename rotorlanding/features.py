@@ -35,13 +35,30 @@ MAX_DISTANCE = DIRECTION_MISMATCH
 ABSENT_FEATURE_DISTANCE = MAX_DISTANCE
 WHIRL_DIRECTIONS = ("none", "forward", "backward")
 
-#: every feature :func:`extract_features` gives (bearing DE), name -> unit (the name's suffix)
+#: per-journal features, name without the bearing prefix -> unit (the name's suffix)
+_JOURNAL_UNITS = {
+    "orbit_radius_mean_m": "m", "first_rebound_m": "m", "vertical_min_m": "m", "vertical_max_m": "m",
+    "horizontal_min_m": "m", "horizontal_max_m": "m", "force_peak_n": "n", "force_z_min_n": "n",
+    "force_z_max_n": "n", "race_spinup_s": "s",
+}
+#: the journals whose channels give features: the whirl rows (direction, frequency, onset) are the
+#: first one's (the paper measured the DE), the per-journal rows are every journal's (issue 20,
+#: point 7: every channel the data have; an NDE clearance or an NDE face effect shows at the NDE)
+JOURNALS = ("DE", "NDE")
+
+#: the per-journal rows the other journals give: those a landing's first impacts and its mean
+#: motion set (depth of the landing, mean orbit, impact force, race spin-up). Their lateral and
+#: vertical extremes late in a rattling landing are chaos (the gate's off-centre drops move them
+#: most, docs/measured_data.md), and doubling them hid weak effects under the noise gate (4 of the
+#: diagnose tests' effects unnamed when every NDE row was compared)
+OTHER_JOURNAL_ROWS = ("vertical_min_m", "orbit_radius_mean_m", "force_peak_n", "race_spinup_s")
+
+#: every feature :func:`extract_features` gives, name -> unit (the name's suffix)
 FEATURE_UNITS = {
     "whirl_direction": "", "whirl_frequency_hz": "hz", "whirl_onset_s": "s",
-    "DE_orbit_radius_mean_m": "m", "DE_first_rebound_m": "m", "DE_vertical_min_m": "m", "DE_vertical_max_m": "m",
-    "DE_horizontal_min_m": "m", "DE_horizontal_max_m": "m", "DE_force_peak_n": "n", "DE_force_z_min_n": "n",
-    "DE_force_z_max_n": "n", "rotor_deceleration_rpm_s": "rpm_s", "DE_race_spinup_s": "s", "axial_mean_m": "m",
-    "axial_oscillation_m": "m",
+    **{f"{b}_{k}": u for b in JOURNALS for k, u in _JOURNAL_UNITS.items()
+       if b == JOURNALS[0] or k in OTHER_JOURNAL_ROWS},
+    "rotor_deceleration_rpm_s": "rpm_s", "axial_mean_m": "m", "axial_oscillation_m": "m",
 }
 
 
@@ -49,9 +66,10 @@ FEATURE_UNITS = {
 #: otherwise be fitted as a real gap)
 POSITIVE_FEATURES = {"whirl_frequency_hz": "a whirl frequency is a magnitude; whirl_direction gives the sense"}
 NONNEGATIVE_FEATURES = {
-    "whirl_onset_s": "time after the drop", "DE_race_spinup_s": "time after the drop",
-    "DE_orbit_radius_mean_m": "a radius", "DE_force_peak_n": "a force magnitude",
-    "axial_oscillation_m": "an amplitude",
+    "whirl_onset_s": "time after the drop", "axial_oscillation_m": "an amplitude",
+    **{f"{b}_{k}": why for b in JOURNALS for k, why in (
+        ("race_spinup_s", "time after the drop"), ("orbit_radius_mean_m", "a radius"),
+        ("force_peak_n", "a force magnitude"))},
 }
 
 
@@ -92,8 +110,35 @@ def _uniform(t, v, dt=None):
     return tu, np.interp(tu, t, v)
 
 
-def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t_drop: float = 0.0) -> dict:
-    """Features (value, scale) from whichever channels the measurement has."""
+def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t_drop: float = 0.0,
+                     journals=JOURNALS) -> dict:
+    """Features (value, scale) from whichever channels the measurement has: the whirl rows and
+    every per-journal row from ``bearing``'s journal, the rows of :data:`OTHER_JOURNAL_ROWS` from
+    every other journal of ``journals`` whose channels are there (a missing NDE channel gives no NDE
+    rows, not a charge), the speed and axial rows once.
+    Displacement scales are 0.1 ``clearance`` at every journal (the model's DE clearance: a fixed
+    yardstick, so a wrong NDE clearance shows as a distance instead of moving its own scale)."""
+    f: dict[str, tuple] = {}
+    for b in [bearing] + [j for j in journals if j != bearing]:
+        jf = _journal_features(m, clearance=clearance, bearing=b, t_drop=t_drop, whirl=b == bearing)
+        f.update(jf if b == bearing else {k: v for k, v in jf.items() if k[len(b) + 1:] in OTHER_JOURNAL_ROWS})
+    if m.has("rotor_speed_rpm"):
+        t, s = m.series("rotor_speed_rpm")
+        sel = t >= t_drop
+        if sel.sum() > 2:
+            slope = float(np.polyfit(t[sel], s[sel], 1)[0])
+            f["rotor_deceleration_rpm_s"] = (-slope, max(5.0, 0.1 * abs(slope)))
+    if m.has("axial_m"):
+        t, x = m.series("axial_m")
+        sel = t >= t_drop + 0.1
+        if sel.sum() > 2:
+            f["axial_mean_m"] = (float(np.mean(x[sel])), 2e-5)
+            f["axial_oscillation_m"] = (float(np.std(x[sel])), 1e-5)
+    return f
+
+
+def _journal_features(m: Measurement, *, clearance: float, bearing: str, t_drop: float, whirl: bool) -> dict:
+    """One journal's features (its displacement, force and race channels; the whirl rows if ``whirl``)."""
     f: dict[str, tuple] = {}
     c = clearance
     yk, zk = f"{bearing}_y_m", f"{bearing}_z_m"
@@ -104,18 +149,19 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
         dt = max(float(np.median(np.diff(ty))), float(np.median(np.diff(tz))))
         tu = np.arange(t0, t1, dt)
         yu, zu = np.interp(tu, ty, y), np.interp(tu, tz, z)
-        spin = None
-        if m.has("rotor_speed_rpm"):
-            ts, s = m.series("rotor_speed_rpm")
-            spin = np.interp(tu, ts, s) / 60.0
-        try:
-            w = whirl_analysis(tu, yu, zu, clearance=c, spin_hz=spin, t_start=t0)
-            f["whirl_direction"] = (w.direction, None)
-            if w.direction != "none":
-                f["whirl_frequency_hz"] = (w.frequency_hz, max(2.0, 0.03 * w.frequency_hz))
-                f["whirl_onset_s"] = (w.onset_s - t_drop, 0.05)
-        except ValueError:
-            pass
+        if whirl:
+            spin = None
+            if m.has("rotor_speed_rpm"):
+                ts, s = m.series("rotor_speed_rpm")
+                spin = np.interp(tu, ts, s) / 60.0
+            try:
+                w = whirl_analysis(tu, yu, zu, clearance=c, spin_hz=spin, t_start=t0)
+                f["whirl_direction"] = (w.direction, None)
+                if w.direction != "none":
+                    f["whirl_frequency_hz"] = (w.frequency_hz, max(2.0, 0.03 * w.frequency_hz))
+                    f["whirl_onset_s"] = (w.onset_s - t_drop, 0.05)
+            except ValueError:
+                pass
         late = tu > t0 + 0.1
         if late.any():
             f[f"{bearing}_orbit_radius_mean_m"] = (float(np.mean(np.hypot(yu[late], zu[late]))), 0.1 * c)
@@ -143,26 +189,15 @@ def extract_features(m: Measurement, *, clearance: float, bearing: str = "DE", t
             fs = max(200.0, 0.15 * peak)
             f[f"{bearing}_force_z_min_n"] = (float(np.min(b[sel])), fs)
             f[f"{bearing}_force_z_max_n"] = (float(np.max(b[sel])), fs)
-    if m.has("rotor_speed_rpm"):
+    rk = f"{bearing}_inner_race_speed_rpm"
+    if m.has("rotor_speed_rpm") and m.has(rk):
         t, s = m.series("rotor_speed_rpm")
-        sel = t >= t_drop
-        if sel.sum() > 2:
-            slope = float(np.polyfit(t[sel], s[sel], 1)[0])
-            f["rotor_deceleration_rpm_s"] = (-slope, max(5.0, 0.1 * abs(slope)))
-        rk = f"{bearing}_inner_race_speed_rpm"
-        if m.has(rk):
-            tr, r = m.series(rk)
-            rotor = np.interp(tr, t, s)
-            up = np.nonzero((tr >= t_drop) & (r >= 0.9 * rotor))[0]
-            # None: the race speed was recorded and never reached 90 % (a measurable absence,
-            # charged against a model whose race does spin up, :data:`ABSENT_FEATURE_DISTANCE`)
-            f[f"{bearing}_race_spinup_s"] = (float(tr[up[0]] - t_drop) if up.size else None, 0.02)
-    if m.has("axial_m"):
-        t, x = m.series("axial_m")
-        sel = t >= t_drop + 0.1
-        if sel.sum() > 2:
-            f["axial_mean_m"] = (float(np.mean(x[sel])), 2e-5)
-            f["axial_oscillation_m"] = (float(np.std(x[sel])), 1e-5)
+        tr, r = m.series(rk)
+        rotor = np.interp(tr, t, s)
+        up = np.nonzero((tr >= t_drop) & (r >= 0.9 * rotor))[0]
+        # None: the race speed was recorded and never reached 90 % (a measurable absence,
+        # charged against a model whose race does spin up, :data:`ABSENT_FEATURE_DISTANCE`)
+        f[f"{bearing}_race_spinup_s"] = (float(tr[up[0]] - t_drop) if up.size else None, 0.02)
     return f
 
 

@@ -269,6 +269,8 @@ DIAGNOSE_ARG_CASES = [
     (["--workers", "0"], "--workers"),
     (["--maxiter", "0"], "--maxiter"),
     (["--candidates", "no_such_effect"], "--candidates"),
+    (["--journals", "NDE"], "--journals"),
+    (["--journals", "DE,XDE"], "--journals"),
     (["--set", "effects.nothing=true"], "effects.nothing"),
     (["--set", "contact.mu_ax=50"], "contact.mu_ax"),
 ]

@@ -4,6 +4,7 @@
 import math
 
 import numpy as np
+import pytest
 
 from rotorlanding.features import ABSENT_FEATURE_DISTANCE, MAX_DISTANCE, extract_features, gap, soft_cap
 from rotorlanding.measured import Measurement
@@ -127,3 +128,20 @@ def test_cli_names_the_feature_the_model_cannot_produce_first(tmp_path, capsys):
     md = (out / "report.md").read_text()
     assert md.index("First hint") < md.index("Named effect") and "DE_race_spinup_s (absent in the model)" in md
     assert "the model cannot produce: DE_race_spinup_s" in capsys.readouterr().out
+
+
+def test_decisive_features_are_the_rows_whose_squared_distance_fell_most():
+    from rotorlanding.diagnose_run import decisive_features
+
+    before = [{"point": "p", "feature": "a", "distance": 2.0, "weight": 1.0},
+              {"point": "p", "feature": "b", "distance": 1.0, "weight": 1.0},
+              {"point": "p", "feature": "c", "distance": 0.5, "weight": 1.0},
+              {"point": "q", "feature": "a", "distance": 0.1, "weight": 1.0}]
+    after = [{"point": "p", "feature": "a", "distance": 0.0, "weight": 1.0},   # fall 4
+             {"point": "p", "feature": "b", "distance": 0.0, "weight": 1.0},   # fall 1
+             {"point": "p", "feature": "c", "distance": 1.5, "weight": 1.0},   # rose: not decisive
+             {"point": "q", "feature": "a", "distance": 0.1, "weight": 1.0}]   # unchanged
+    d = decisive_features(before, after)
+    assert [(x["point"], x["feature"]) for x in d] == [("p", "a"), ("p", "b")]
+    assert [x["share"] for x in d] == pytest.approx([0.8, 0.2])
+    assert decisive_features(after, after) == []

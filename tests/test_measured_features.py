@@ -115,15 +115,23 @@ def test_distances_are_bounded_by_the_direction_mismatch():
 
 
 def test_table_scales_follow_the_extraction_rules():
-    from rotorlanding.features import FEATURE_UNITS, scale_of
+    from rotorlanding.features import FEATURE_UNITS, OTHER_JOURNAL_ROWS, scale_of
 
     t, y, z, rotor, race = _synthetic()
     fz = np.where(z <= -C, 3000.0, 0.0)
-    m = Measurement({"DE_y_m": (t, y), "DE_z_m": (t, z), "rotor_speed_rpm": (t, rotor),
-                     "DE_inner_race_speed_rpm": (t, race), "DE_force_y_n": (t, 0 * t), "DE_force_z_n": (t, fz),
-                     "axial_m": (t, 1e-5 * np.sin(t))})
-    f = extract_features(m, clearance=C)
+    chans = {"rotor_speed_rpm": (t, rotor), "axial_m": (t, 1e-5 * np.sin(t))}
+    for b in ("DE", "NDE"):
+        chans.update({f"{b}_y_m": (t, y), f"{b}_z_m": (t, z), f"{b}_inner_race_speed_rpm": (t, race),
+                      f"{b}_force_y_n": (t, 0 * t), f"{b}_force_z_n": (t, fz)})
+    f = extract_features(Measurement(chans), clearance=C)
     assert set(f) == set(FEATURE_UNITS) - {"DE_first_rebound_m"}
+    # every channel gives its features (issue 20, point 7): the NDE rows equal the DE rows of the same
+    # signals, and a record without NDE channels gives no NDE rows (not a charge)
+    nde = {k for k in f if k.startswith("NDE_")}
+    assert nde == {"NDE_" + k for k in OTHER_JOURNAL_ROWS}
+    assert all(f[k] == f["DE" + k[3:]] for k in nde)
+    de_only = extract_features(Measurement({k: v for k, v in chans.items() if not k.startswith("NDE")}), clearance=C)
+    assert de_only == {k: v for k, v in f.items() if not k.startswith("NDE")}
     peak = f["DE_force_peak_n"][0]
     for name, (v, s) in f.items():
         assert scale_of(name, v, C, peak if name.endswith("_n") else None) == pytest.approx(s) if s else s is None
