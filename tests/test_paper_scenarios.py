@@ -214,3 +214,47 @@ def test_provenance_follows_the_adopted_calibrations(monkeypatch):
     assert prov["t1_onset"] == prov["switch_calm"] and prov["t2_force_min"] == "predicted"
     monkeypatch.setattr(v, "ADOPTED", ())
     assert set(v.provenance().values()) == {"predicted"}
+
+
+def test_ribbon_modal_shift_is_the_ribbon_share_of_the_mode_strain_energy():
+    """The report's explanation of the ribbon check (validate.ribbon_modal_shift): the landed mode
+    moves with K_rib by about half the ribbon's share of the mode's strain energy. Checked where
+    Rayleigh's rule is exact (standstill, no gyroscopic terms) against the strain energies of the
+    mode shape itself: d ln f / d ln K_rib = 1/2 (E_support / E_total) (k_sup / K_rib) for the
+    ribbon in series with the rest of the support chain. Then the report's numbers at 7000 rpm."""
+    import math
+
+    import numpy as np
+
+    from rotorlanding.modal import modal_analysis
+    from rotorlanding.modefit import load_space, rotor_with
+    from rotorlanding.reduction import full_model
+    from rotorlanding.rotor import rotor_from_dict
+    from rotorlanding.timoshenko import assemble
+    from rotorlanding.validate import project_root, ribbon_modal_shift
+
+    rm = ribbon_modal_shift()
+    k_rib, k_rest = rm["k_rib"], rm["k_rest"]
+    space = load_space(project_root() / "scenarios" / "calibration" / "rotor_modes.toml")
+
+    def mode(factor):
+        ks = 1.0 / (1.0 / (factor * k_rib) + 1.0 / k_rest)
+        fe = assemble(rotor_from_dict(rotor_with(space["rotor_data"], {}, ks)))
+        sysm = full_model(fe).with_supports()
+        m = min(modal_analysis(sysm, 0.0).modes, key=lambda m: abs(m.frequency_hz - 49.0))
+        return m, sysm, fe, ks
+
+    m0, sysm, fe, ks = mode(1.0)
+    phi = np.real(m0.shape) if np.linalg.norm(np.real(m0.shape)) > np.linalg.norm(np.imag(m0.shape)) else np.imag(m0.shape)
+    q = np.linalg.lstsq(sysm.T, phi, rcond=None)[0]
+    e_total = float(q @ sysm.K @ q)
+    e_support = sum(s.kyy * phi[fe.dof(s.station, "y")] ** 2 + s.kzz * phi[fe.dof(s.station, "z")] ** 2
+                    for s in fe.rotor.supports)
+    predicted = 0.5 * e_support / e_total * ks / k_rib
+    eps = 0.01
+    fd = math.log(mode(1 + eps)[0].frequency_hz / mode(1 - eps)[0].frequency_hz) / math.log((1 + eps) / (1 - eps))
+    assert fd == pytest.approx(predicted, rel=0.03)
+    # the report's numbers: the 7000 rpm mode moves little and the same way as the ribbon
+    assert rm["modes_hz"][0.5] < rm["modes_hz"][1.0] < rm["modes_hz"][1.5]
+    assert rm["support_n_m"][1.0] == pytest.approx(space["support_stiffness"])
+    assert 0.0 < rm["ribbon_energy_share"] < 0.3 and abs(rm["shift"][1.5]) < 0.10 and abs(rm["shift"][0.5]) < 0.10
