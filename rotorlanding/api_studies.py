@@ -121,7 +121,8 @@ class Coastdown(_SeriesResults):
         series_names, units: the stored series and their units ({name: unit})
         chunks: the per-chunk table (dict of arrays): ``t_start_s``, ``t_end_s`` [s],
             ``rotor_speed_rpm``, ``whirl_direction`` (-1, 0, +1), ``whirl_frequency_hz``,
-            ``<bearing>_max_contact_force_n`` [N], solver counts
+            ``whirl_bearing`` (index into the bearing names, -1 none; absent in files begun before
+            it was stored), ``<bearing>_max_contact_force_n`` [N], solver counts
         scenario: the :class:`~rotorlanding.api.Scenario` that was run (from the file)
         clearances: {bearing: radial clearance [m]}
         path: the results.h5; complete: False when interrupted (``resume=True`` continues) or

@@ -75,6 +75,7 @@ from .safeio import WriteError, atomic_write_text, check_out_dir, fault
 from .scenario import Scenario, scenario_from_dict
 from .thermal_feedback import first_runaway
 from .thermal_states import file_summary as thermal_file_summary, format_lines as format_thermal
+from .whirl import longest_whirl
 
 FIELDS = ("stop_speed_rpm", "chunk_s", "decimate_every", "fast_force_rate_n_s", "landing_s", "smooth_step")
 
@@ -208,7 +209,8 @@ class Interrupted(Exception):
 def _classify_whirl(spec, t, q, v, chunk_s):
     """The landing's whirl within one chunk (the DE journal's, else the bearing whose journal whirls
     first: ``whirl.landing_whirl_bearing``), from the full-rate samples (before decimation):
-    (direction -1/0/1, frequency [Hz] or nan)."""
+    (direction -1/0/1, frequency [Hz] or nan, index of that bearing in spec.bearings or -1 when
+    none whirls)."""
     from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
 
     whirls = {}
@@ -221,9 +223,13 @@ def _classify_whirl(spec, t, q, v, chunk_s):
                                             min_duration_s=0.5 * (chunk_s - window)).to_dict()
         except (ValueError, InputError):
             whirls[b.name] = WhirlResult("none", None, None, 0.0).to_dict()
-    wr = whirls[landing_whirl_bearing(whirls)]
+    name = landing_whirl_bearing(whirls)
+    wr = whirls[name]
     d = {"none": 0, "forward": 1, "backward": -1}[wr["direction"]]
-    return d, (wr["frequency_hz"] if wr["frequency_hz"] is not None else float("nan"))
+    # the bearing as an index (-1: no whirl): the chunk columns are numeric so that the commit's
+    # hash chain reads back the stored bytes (a variable-length string would hash a pointer)
+    return (d, (wr["frequency_hz"] if wr["frequency_hz"] is not None else float("nan")),
+            spec.bearing_names.index(name) if d else -1)
 
 
 def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = False, overwrite: bool = False,
@@ -365,6 +371,9 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
     carried = carried_series(spec.bearing_names)
     with Store(path, "r") as store:
         rs = store.restart()  # the first chunk starts from what is committed in the file
+        # a file begun before the per-chunk whirl bearing was stored resumes without that column
+        # (every chunk row must fill the same columns; its verdict then names no whirl bearing)
+        has_whirl_bearing = "coastdown/chunks/whirl_bearing" in store.chunk_paths
     while True:
         wall_chunk0 = time.perf_counter()
         k = int(rs["chunks"])
@@ -396,7 +405,7 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
             t[-1], q[-1], v[-1] = t1, qe, ve
         max_buffer = max(max_buffer, len(t))
         keep, fast = keep_mask(t, contact_normal_forces(spec_k, q, v), cd, s_k.output_period)
-        whirl = _classify_whirl(spec_k, t, q, v, t1 - t0) if ok and len(t) > 8 else (0, float("nan"))
+        whirl = _classify_whirl(spec_k, t, q, v, t1 - t0) if ok and len(t) > 8 else (0, float("nan"), -1)
         t, q, v = t[keep], q[keep], v[keep]
         # on the kept samples only; cumulative from the chunk start, carried states (temperatures)
         # from the previous chunk's last row
@@ -411,6 +420,8 @@ def _chunks(path, ckpt, spec, scenario, cd, settings, stream, on_chunk, plots, c
                    "steps": stats["steps"], "newton_iterations": stats["newton_iterations"],
                    "jacobians": stats["jacobians"], "samples_kept": len(t) - (1 if k > 0 else 0),
                    "samples_fast": int(fast.sum()), "whirl_direction": whirl[0], "whirl_frequency_hz": whirl[1]}
+            if has_whirl_bearing:
+                row["whirl_bearing"] = whirl[2]
             for b in spec.bearing_names:
                 row[f"{b}_max_contact_force_n"] = float(np.max(np.hypot(*rotor_force(series, b))))
             reason, t_stop = "", None
@@ -491,8 +502,12 @@ def _maxrss_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
-def whirl_phases(t_start, t_end, direction, freq, speed_end) -> list[dict]:
-    """Contiguous runs of chunks with the same per-chunk whirl direction."""
+def whirl_phases(t_start, t_end, direction, freq, speed_end, bearing=None, bearing_names=()) -> list[dict]:
+    """Contiguous runs of chunks with the same per-chunk whirl direction. ``bearing``: per chunk the
+    index into ``bearing_names`` of the bearing that whirls (-1 none; None: a file without that
+    column). A whirling phase names its ``bearing`` (the one whirling for the most chunk time in
+    it; the first to whirl on a tie) and ``bearing_time_s`` (whirl time per bearing), so a
+    verdict can name the bearing of the whole run."""
     names = {0: "none", 1: "forward", -1: "backward"}
     out = []
     i = 0
@@ -503,9 +518,20 @@ def whirl_phases(t_start, t_end, direction, freq, speed_end) -> list[dict]:
             j += 1
         f = freq[i:j + 1]
         f = f[np.isfinite(f)]
-        out.append({"direction": names[int(direction[i])], "t_start_s": float(t_start[i]), "t_end_s": float(t_end[j]),
-                    "rotor_speed_rpm_at_end": float(speed_end[j]),
-                    "frequency_hz_median": float(np.median(f)) if len(f) else None})
+        ph = {"direction": names[int(direction[i])], "t_start_s": float(t_start[i]), "t_end_s": float(t_end[j]),
+              "rotor_speed_rpm_at_end": float(speed_end[j]),
+              "frequency_hz_median": float(np.median(f)) if len(f) else None}
+        if ph["direction"] != "none":
+            times = {}
+            if bearing is not None:
+                for m in range(i, j + 1):
+                    b = int(bearing[m])
+                    if 0 <= b < len(bearing_names):
+                        key = bearing_names[b]
+                        times[key] = times.get(key, 0.0) + float(t_end[m] - t_start[m])
+            ph["bearing"] = longest_whirl(times)
+            ph["bearing_time_s"] = times
+        out.append(ph)
         i = j + 1
     return out
 
@@ -552,7 +578,8 @@ def finish(path: Path, spec, scenario: Scenario, cd: Coastdown, *, plots: bool =
             summary["bearings"] = {b: {"max_contact_force_n": float(np.max(ch[f"{b}_max_contact_force_n"]))
                                        if len(ch[f"{b}_max_contact_force_n"]) else 0.0} for b in spec.bearing_names}
             summary["whirl_phases"] = whirl_phases(ch["t_start_s"], ch["t_end_s"], ch["whirl_direction"],
-                                                   ch["whirl_frequency_hz"], ch["rotor_speed_rpm"])
+                                                   ch["whirl_frequency_hz"], ch["rotor_speed_rpm"],
+                                                   ch.get("whirl_bearing"), spec.bearing_names)
             thermal = thermal_file_summary(h5, spec)
             if thermal:
                 summary["thermal"] = thermal

@@ -204,7 +204,9 @@ CHUNK_COLUMNS = {  # /coastdown/chunks/NAME: one row per finished chunk
     "t_start_s": "s", "t_end_s": "s", "rotor_speed_rpm": "rpm", "wall_s": "s (solver only)", "steps": "-",
     "newton_iterations": "-", "jacobians": "-", "samples_kept": "-", "samples_fast": "-",
     "whirl_direction": "-1 backward, 0 none, +1 forward (per chunk; the DE journal's, else the bearing that whirls)", "whirl_frequency_hz": "Hz",
+    "whirl_bearing": "- (index into the attribute 'names' of the bearing whose whirl is whirl_direction; -1 none)",
 }
+CHUNK_INT_COLUMNS = ("whirl_bearing",)  # stored as int64 (an index), the other columns as float
 
 
 def _resizable(g, name, shape_tail, dtype=float, unit=None):
@@ -276,7 +278,9 @@ def create_file(path: Path, scenario: Scenario, cd: Coastdown, spec, series_unit
             c = h5.create_group("coastdown")
             ch = c.create_group("chunks")
             for name, unit in CHUNK_COLUMNS.items():
-                _resizable(ch, name, (), unit=unit)
+                ds = _resizable(ch, name, (), dtype=np.int64 if name in CHUNK_INT_COLUMNS else float, unit=unit)
+                if name == "whirl_bearing":
+                    ds.attrs["names"] = json.dumps(list(bearing_names))
             for b in bearing_names:
                 _resizable(ch, f"{b}_max_contact_force_n", (), unit="N")
             cm = c.create_group("commits")

@@ -478,7 +478,20 @@ def _plausible(sc: Scenario) -> None:
     from .rotor import MAX_DENSITY
     from .timoshenko import GRAVITY
 
-    h = sc.solver.step
+    # the stiffness / damping limits below bound the largest step the solver takes: that is
+    # solver.step for a fixed step, but the auto step grows to solver.max_step (StepController;
+    # solver.step is only its first step and the contact look-ahead's floor)
+    if sc.solver.step_control == "auto":
+        h, h_name = sc.solver.max_step, "solver.max_step"
+    else:
+        h, h_name = sc.solver.step, "solver.step"
+
+    h_text = f"{h_name} = {h:g} s" + (" (the auto step grows up to it)" if h_name == "solver.max_step" else "")
+
+    def or_smaller(h_max):
+        """Under auto the other way out: max_step is a solver choice, not the machine's."""
+        return f"; or solver.max_step <= {h_max:.3g} s" if h_name == "solver.max_step" else ""
+
     # the speed first: the spin terms below scale with it
     burst, part = sc.rotor.burst_speed_rpm()
     if sc.speed_rpm > burst:
@@ -494,14 +507,15 @@ def _plausible(sc: Scenario) -> None:
     def stiff(field_, k, m, body, unit="N/m"):
         if k * h * h / m > MAX_STEP_RATIO:
             raise InputError(field_, k, f"must be <= {MAX_STEP_RATIO * m / h ** 2:.3g} {unit} here: on the {body} "
-                             f"({m:.3g} kg) with solver.step = {h:g} s its inertia is below the Newton tolerance "
-                             f"(k h^2/m <= {MAX_STEP_RATIO:g}); a rigid link the solver cannot resolve")
+                             f"({m:.3g} kg) with {h_text} its inertia is below the Newton tolerance "
+                             f"(k h^2/m <= {MAX_STEP_RATIO:g}); a rigid link the solver cannot resolve"
+                             + or_smaller(math.sqrt(MAX_STEP_RATIO * m / k)))
 
     def damp(field_, c, m, body):
         if c * h / m > MAX_STEP_RATIO:
             raise InputError(field_, c, f"must be <= {MAX_STEP_RATIO * m / h:.3g} N s/m here: on the {body} "
-                             f"({m:.3g} kg) with solver.step = {h:g} s its inertia is below the Newton tolerance "
-                             f"(c h/m <= {MAX_STEP_RATIO:g})")
+                             f"({m:.3g} kg) with {h_text} its inertia is below the Newton tolerance "
+                             f"(c h/m <= {MAX_STEP_RATIO:g})" + or_smaller(MAX_STEP_RATIO * m / c))
 
     for b in sc.bearings.values():
         p = f"bearings.{b.name}"
@@ -559,9 +573,10 @@ def _plausible(sc: Scenario) -> None:
     k_t = c.exponent * c.k_hertz ** (1.0 / c.exponent) * weight ** ((c.exponent - 1.0) / c.exponent)
     m_race = min(b.inner_race_mass for b in sc.bearings.values())
     if k_t * h * h / m_race > MAX_STEP_RATIO:
-        raise InputError("contact.k_hertz", c.k_hertz, f"too stiff for solver.step = {h:g} s: carrying the rotor's "
+        raise InputError("contact.k_hertz", c.k_hertz, f"too stiff for {h_text}: carrying the rotor's "
                          f"weight its tangent stiffness {k_t:.3g} N/m on the inner race ({m_race:.3g} kg) gives "
-                         f"k h^2/m > {MAX_STEP_RATIO:g} (inertia below the Newton tolerance)")
+                         f"k h^2/m > {MAX_STEP_RATIO:g} (inertia below the Newton tolerance)"
+                         + or_smaller(math.sqrt(MAX_STEP_RATIO * m_race / k_t)))
     # Hunt-Crossley damping coefficient k_visc d^e = k_visc F / k_hertz at the same load
     damp("contact.k_visc", c.k_visc * weight / c.k_hertz, m_race, "inner race (k_visc x weight / k_hertz)")
     for key in ("v_reg", "v_reg_axial"):

@@ -28,7 +28,9 @@ laws (``user_forces``):
   pressure envelope (each cycle at its peak); the two added (conservative). Allowable drops =
   1 / damage; the criterion: allowable >= drops_required. Fatigue only (see below).
 - **whirl**: the landed journal's whirl (direction, frequency, onset) against
-  ``whirl_acceptable_below_rpm``: a whirl that starts above that rotor speed fails.
+  ``whirl_acceptable_below_rpm``: a whirl that starts above that rotor speed fails. Its bearing:
+  the landing's whirl bearing; for a coast-down the one whirling longest over its chunks
+  (:func:`whirl_bearing`).
 - **whirl severity**: the time whirling and (landing runs) the orbit amplitude over the radial
   clearance (``whirl_time_s``, ``whirl_orbit_over_clearance``), and the **peak contact force** per
   bearing (``contact_force_n``): judged when their limit is > 0, else reported ('reported' rows).
@@ -56,6 +58,7 @@ from user_forces.fatigue import allowable_drops, overrolling_damage, rainflow_da
 
 from .limits import KELVIN_0C, SOURCES, Limits, limits_from_dict
 from .safeio import atomic_write_text, tmp_name, unlink_quietly
+from .whirl import longest_whirl
 
 _BALL_LOADS = None
 DEFAULT_INTERNAL_CLEARANCE_M = 20.0e-6  # m: the thermal_feedback mechanism's cold default (assumed)
@@ -210,6 +213,20 @@ def whirl_severity(t, summary: dict, clearance: dict | None = None) -> dict:
     return out
 
 
+def whirl_bearing(summary: dict) -> str | None:
+    """The bearing a run's whirl is named by. Landing: the summary's whirl bearing. Coast-down:
+    the bearing with the longest whirl time over its phases (each chunk's whirl bearing, stored
+    per chunk; the first to whirl on a tie); None when no chunk whirls or the file predates the
+    per-chunk bearing (its phases carry no time per bearing)."""
+    if "whirl_phases" not in summary:
+        return (summary.get("whirl") or {}).get("bearing")
+    times: dict = {}
+    for ph in summary["whirl_phases"]:
+        for name, sec in (ph.get("bearing_time_s") or {}).items():
+            times[name] = times.get(name, 0.0) + float(sec)
+    return longest_whirl(times)
+
+
 def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None = None,
                     severity: dict | None = None) -> dict:
     """The landed journal's whirl against whirl_acceptable_below_rpm (landing or coast-down), with
@@ -233,9 +250,9 @@ def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None 
             worst = (direction, speed, t0, f)
     lim = limits.whirl_acceptable_below_rpm
     if worst is None:
-        return {"criterion": "whirl", "bearing": (summary.get("whirl") or {}).get("bearing"), "value": "none",
+        return {"criterion": "whirl", "bearing": whirl_bearing(summary), "value": "none",
                 "limit": lim, "unit": "rpm", "margin": None, "pass": True, "dominant": {}}
-    return {"criterion": "whirl", "bearing": (summary.get("whirl") or {}).get("bearing"),
+    return {"criterion": "whirl", "bearing": whirl_bearing(summary),
             "value": f"{worst[0]} from {worst[1]:.0f} rpm", "limit": lim, "unit": "rpm", "margin": None,
             "pass": bool(worst[1] < lim),
             "dominant": {"direction": worst[0], "rotor_speed_at_onset_rpm": worst[1], "t_onset_s": worst[2],

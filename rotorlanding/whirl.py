@@ -562,6 +562,17 @@ def landing_whirl_bearing(whirls: dict, reference: str = "DE") -> str:
     return min(moving, key=lambda name: _onset(whirls[name])) if moving else ref
 
 
+def longest_whirl(times: dict) -> str | None:
+    """The bearing with the longest whirl time in ``times`` (name -> s, in order of first whirl:
+    the earlier wins a tie), None when empty: the whirl bearing of a coast-down, whose chunks may
+    each name a different one."""
+    best = None
+    for name, sec in times.items():
+        if best is None or sec > times[best]:
+            best = name
+    return best
+
+
 def _onset(w: dict) -> float:
     return float("inf") if w.get("onset_s") is None else w["onset_s"]
 

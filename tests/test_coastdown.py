@@ -328,3 +328,49 @@ def test_thermal_feedback_coastdown_resumes_bit_for_bit(tmp_path):
     fb = full["thermal"]["NDE"]["feedback"]
     assert fb["min_journal_clearance_m"] < 2.0e-4 and not fb["runaway"]
     assert a["series/NDE_journal_clearance_m"][-1] < a["series/NDE_journal_clearance_m"][0]
+
+
+def test_chunks_store_the_whirl_bearing_and_the_verdict_names_it(tmp_path):
+    """Per chunk the bearing of its whirl (index into the column's 'names', -1 when the chunk does
+    not whirl); the summary's whirl phases and the verdict name it (was None). A 0.4 s combined
+    landing (4 kN thrust, axial AMB off; ~3 s wall): its DE journal whirls in every chunk."""
+    from rotorlanding.verdict import verdict_from_results
+
+    summary = _run(tmp_path, ["operating.t_end=0.4", "coastdown.chunk_s=0.1", "coastdown.decimate_every=10",
+                              "coastdown.landing_s=0.4", "axial.f_thrust=4000.0", "amb.drop_axial=true"])
+    with h5py.File(tmp_path / "results.h5", "r") as h5:
+        ch = h5["coastdown/chunks"]
+        names = json.loads(ch["whirl_bearing"].attrs["names"])
+        wb, wd = ch["whirl_bearing"][()], ch["whirl_direction"][()]
+    assert names == ["DE", "NDE"] and len(wb) == len(wd) == 4
+    assert np.array_equal(wb == -1, wd == 0) and np.all(wb < len(names))
+    whirling = [ph for ph in summary["whirl_phases"] if ph["direction"] != "none"]
+    assert whirling, "the case is meant to whirl"
+    for ph in whirling:
+        assert ph["bearing"] in names and sum(ph["bearing_time_s"].values()) == pytest.approx(
+            ph["t_end_s"] - ph["t_start_s"])
+    v = verdict_from_results(tmp_path / "results.h5", plots=False)
+    rows = [c for c in v["criteria"] if c["criterion"].startswith("whirl")]
+    assert rows and all(c["bearing"] == "DE" for c in rows)
+
+
+def test_resume_of_a_file_without_the_whirl_bearing_column(tmp_path, monkeypatch):
+    """A run begun before chunks stored their whirl bearing resumes to the end without it (no
+    traceback; its whirl phases then name no bearing)."""
+    from rotorlanding import results
+
+    old = {k: v for k, v in results.CHUNK_COLUMNS.items() if k != "whirl_bearing"}
+    monkeypatch.setattr(results, "CHUNK_COLUMNS", old)
+
+    def stop_after_two(info):
+        if info["chunk"] == 1:
+            raise Interrupted
+
+    with pytest.raises(Interrupted):
+        _run(tmp_path, on_chunk=stop_after_two, commit_every_s=0)
+    monkeypatch.undo()
+    summary = _run(tmp_path, resume=True)
+    assert summary["complete"]
+    with h5py.File(tmp_path / "results.h5", "r") as h5:
+        assert "whirl_bearing" not in h5["coastdown/chunks"]
+    assert all(ph.get("bearing") is None for ph in summary["whirl_phases"])

@@ -138,3 +138,20 @@ def test_fixed_solve_after_an_auto_solve_is_the_fixed_one():
     n = len(t2)
     np.testing.assert_array_equal(q1[-n:], q2)
     np.testing.assert_array_equal(v1[-n:], v2)
+
+
+def test_auto_step_plausibility_uses_max_step():
+    # the stiffness limits bound the largest step; under auto that is max_step, not the first
+    # step: the rig's ball set (k_b2 on a 0.28 kg race) is a rigid link at 0.02 s
+    with pytest.raises(InputError) as e:
+        _scenario(step_control="auto", step=5e-5, max_step=0.02)
+    msg = str(e.value)
+    assert e.value.field.startswith("bearings.") and ".k_b" in e.value.field
+    assert "solver.max_step = 0.02 s" in msg and "or solver.max_step <= " in msg
+    assert str(SCEN) in msg and "\n" not in msg
+    # the same first step under the default max_step (4e-4 s) is plausible; a fixed step is judged
+    # by solver.step as before (0.02 s refused, 5e-5 s passes whatever max_step says)
+    assert _scenario(step_control="auto", step=5e-5, max_step=4e-4).solver.max_step == 4e-4
+    with pytest.raises(InputError, match=r"solver\.step = 0\.02 s"):
+        _scenario(step=0.02, output_period=0.02)
+    assert _scenario(step=5e-5, max_step=0.02).solver.step == 5e-5  # max_step is not used by a fixed step

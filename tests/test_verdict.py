@@ -191,3 +191,58 @@ def test_the_report_says_the_allowable_drops_are_fatigue_only(spec):
     line = next(x for x in md.splitlines() if x.startswith("Allowable drops"))
     assert "rolling-contact fatigue only" in line and "wear" in line and "cage" in line and "heat" in line
     assert "rolling-contact fatigue only" in vd.format_lines(v)[1 + len(v["not_evaluated"])]
+
+
+def test_coastdown_whirl_names_the_bearing_that_whirled_longest():
+    """Coast-down: each chunk stores the bearing of its whirl (index, -1 none); the phases carry
+    the whirl time per bearing and the verdict names the bearing with the longest whirl time over
+    the run (here NDE: 0.3 s against DE's 0.1 s), not None. Synthetic chunk records."""
+    from rotorlanding.coastdown_run import whirl_phases
+
+    t0 = np.arange(7) * 0.1
+    t1 = t0 + 0.1
+    direction = np.array([0, 1, 1, 1, 0, -1, -1])
+    bearing = np.array([-1, 0, 1, 1, -1, 1, 0])  # DE 0.2 s, NDE 0.3 s (forward DE first, NDE more)
+    freq = np.array([np.nan, 60.0, 61.0, 62.0, np.nan, 40.0, 41.0])
+    speed = 7000.0 - 1000.0 * t1
+    phases = whirl_phases(t0, t1, direction, freq, speed, bearing, ("DE", "NDE"))
+    assert [p["direction"] for p in phases] == ["none", "forward", "none", "backward"]
+    assert phases[1]["bearing"] == "NDE" and phases[1]["bearing_time_s"] == pytest.approx({"DE": 0.1, "NDE": 0.2})
+    assert phases[3]["bearing_time_s"] == pytest.approx({"NDE": 0.1, "DE": 0.1})
+    assert phases[3]["bearing"] == "NDE"  # a tie: the first to whirl in the phase
+    assert "bearing" not in phases[0]
+    summary = json.loads(json.dumps({"whirl_phases": phases}))  # as stored in summary_json
+    t = np.linspace(0.0, 0.7, 71)
+    c = vd.whirl_criterion(t, {"rotor_speed_rpm": 7000.0 - 1000.0 * t}, summary, Limits())
+    assert c["bearing"] == "NDE" and not c["pass"] and c["value"].startswith("forward")
+    assert vd.whirl_bearing(summary) == "NDE"
+    # DE whirls longest once its chunks dominate; the verdict follows the stored times
+    phases_de = whirl_phases(t0, t1, direction, freq, speed, np.array([-1, 0, 0, 1, -1, 0, 0]), ("DE", "NDE"))
+    assert vd.whirl_bearing({"whirl_phases": phases_de}) == "DE"
+    # a file from before the per-chunk bearing (no column): phases name none, the verdict says so
+    old = whirl_phases(t0, t1, direction, freq, speed)
+    assert old[1]["bearing"] is None and vd.whirl_bearing({"whirl_phases": old}) is None
+    # no whirl at all: no bearing
+    calm = whirl_phases(t0, t1, np.zeros(7), freq, speed, np.full(7, -1), ("DE", "NDE"))
+    assert vd.whirl_criterion(t, {"rotor_speed_rpm": 7000.0 - 1000.0 * t}, {"whirl_phases": calm},
+                              Limits())["bearing"] is None
+
+
+def test_coastdown_chunk_classification_stores_the_whirling_bearing(spec):
+    """A chunk whose NDE journal circles its clearance forward at 50 Hz (DE at rest) is classified
+    forward, ~50 Hz, bearing index of NDE: what the chunk row stores (synthetic states)."""
+    from rotorlanding.coastdown_run import _classify_whirl
+
+    t = np.arange(0.0, 0.4 + 1e-12, 1e-4)
+    q = np.zeros((len(t), spec.n))
+    v = np.zeros((len(t), spec.n))
+    v[:, spec.i_theta] = 7000.0 * math.pi / 30.0
+    nde = spec.bearing_names.index("NDE")
+    b = spec.bearings[nde]
+    r = b.params.clearance
+    q[:, b.i_station] = r * np.cos(2 * math.pi * 50.0 * t)
+    q[:, b.i_station + 1] = r * np.sin(2 * math.pi * 50.0 * t)
+    d, f, k = _classify_whirl(spec, t, q, v, 0.4)
+    assert (d, k) == (1, nde) and f == pytest.approx(50.0, rel=0.02)
+    q[:] = 0.0
+    assert _classify_whirl(spec, t, q, v, 0.4)[::2] == (0, -1)
