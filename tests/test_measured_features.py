@@ -147,6 +147,20 @@ def test_paper_table_agrees_with_validate_paper(tmp_path):
     assert f["DE_vertical_max_m"][1] == pytest.approx(0.1 * C) and f["whirl_frequency_hz"][1] == pytest.approx(2.0)
 
 
+def test_paper_table1_agrees_with_validate_paper():
+    from rotorlanding.features import features_from_table
+    from rotorlanding.validate import paper
+
+    root = Path(__file__).resolve().parents[1]
+    m = load_measurement(root / "scenarios" / "measured" / "paper_table1.toml")
+    t1 = paper()["table1"]["experimental"]
+    assert not m.points and m.features == {
+        "whirl_direction": "backward", "whirl_frequency_hz": t1["frequency_hz"], "whirl_onset_s": t1["onset_s"],
+        "DE_vertical_max_m": t1["v_disp_max_m"], "DE_vertical_min_m": t1["v_disp_min_m"]}
+    f = features_from_table(m.features, C)
+    assert f["DE_vertical_min_m"][1] == pytest.approx(0.1 * C) and f["whirl_onset_s"][1] == pytest.approx(0.05)
+
+
 @pytest.mark.parametrize("text, words", [
     ('[points.a]\nset.operating.speed_rpm = 3000.0\nfeatures.whirl_frequency_mhz = 48.0\n',
      ["points.a.features.whirl_frequency_mhz", "wrong unit", "whirl_frequency_hz"]),
