@@ -205,3 +205,20 @@ def test_bad_diagnose_options_one_line_errors(tmp_path, capsys, extra, words):
                  "--out", str(tmp_path / "o")] + extra) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and all(w in err for w in words), err
+
+
+def test_diagnose_summary_line_says_a_parameter_explains(monkeypatch, capsys, tmp_path):
+    """The paper's Table 2 (issue 20): the report named the coupling hub's mass while the command's
+    summary line said only 'named effect: None'; it now gives the explanation as well."""
+    import rotorlanding.diagnose_run as dr
+    from rotorlanding.cli import main
+
+    res = {"warnings": [], "gap_before": 2.076, "gap_after": 1.511, "noise_gate": 1.396,
+           "noise": {"source": "4 drops from a 5 um circle"}, "named_effect": None, "named_effects": [],
+           "explanation": "parameter", "signatures": {}, "unexplained": False, "absent_in_model_before": [],
+           "named_parameters": [{"key": "rotor.disks.3.mass", "from": 4.0, "to": 1.0, "bound": [1.0, 8.0]}],
+           "points": [{"name": "a"}], "simulations": 321, "wall_s": 368.0}
+    monkeypatch.setattr(dr, "run_diagnose", lambda *a, **k: (res, ["report.md"]))
+    assert main(["diagnose", "--measured", "m.toml", "--scenario", "s.toml", "--out", str(tmp_path / "o")]) == 0
+    out = capsys.readouterr().out
+    assert "explanation: parameter; named effect: None" in out and "parameter rotor.disks.3.mass: 4.0 -> 1" in out
