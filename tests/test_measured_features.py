@@ -222,3 +222,20 @@ def test_diagnose_summary_line_says_a_parameter_explains(monkeypatch, capsys, tm
     assert main(["diagnose", "--measured", "m.toml", "--scenario", "s.toml", "--out", str(tmp_path / "o")]) == 0
     out = capsys.readouterr().out
     assert "explanation: parameter; named effect: None" in out and "parameter rotor.disks.3.mass: 4.0 -> 1" in out
+
+
+def test_report_step_line_does_not_call_an_unnamed_candidate_named():
+    """The paper's Table 1 with --max-effects 2 (issue 20): step 2's best candidate (the DE
+    clearance) was re-fitted with the named k_rib and not named, and the report listed it under
+    'joint re-fit of everything named so far'."""
+    from rotorlanding.diagnose_run import _step_lines
+
+    refit = {"gap_before_refit": 1.605, "gap_after_refit": 1.605,
+             "values": {"bearings.DE.k_rib": {"bearings.DE.k_rib": 4.18e7},
+                        "bearings.DE.clearance": {"bearings.DE.clearance": 1.88e-4}}}
+    steps = [{"named": "bearings.DE.k_rib", "refit": None, "candidates": [{"effect": "bearings.DE.k_rib"}]},
+             {"named": None, "refit": refit, "candidates": [{"effect": "bearings.DE.clearance"}]}]
+    (line,) = _step_lines(steps)
+    assert line.startswith("Step 2: the best candidate, bearings.DE.clearance, re-fitted") and "not named" in line
+    steps[1]["named"] = "bearings.DE.clearance"
+    assert "joint re-fit of everything named so far with bearings.DE.clearance" in _step_lines(steps)[0]
