@@ -802,7 +802,7 @@ def _fmt(v) -> str:
 def _step_lines(steps: list[dict]) -> list[str]:
     """The report's lines on each step's joint re-fit and rival. A step's re-fit is of the terms
     named before it together with the step's best candidate: when that candidate is not named (the
-    paper's Table 1 with ``--max-effects 2``: the DE clearance at step 2, score 6.34 against 6.82),
+    paper's Table 1 with ``--max-effects 2``: the DE clearance at step 2, score 6.34 against 5.21),
     the line says so instead of listing it among what was named."""
     lines = []
     for i, stp in enumerate(steps, 1):
