@@ -159,6 +159,12 @@ def test_paper_table1_agrees_with_validate_paper():
         "DE_vertical_max_m": t1["v_disp_max_m"], "DE_vertical_min_m": t1["v_disp_min_m"]}
     f = features_from_table(m.features, C)
     assert f["DE_vertical_min_m"][1] == pytest.approx(0.1 * C) and f["whirl_onset_s"][1] == pytest.approx(0.05)
+    # what diagnose compares its model with (no simulation): one point, the scenario as it is
+    from rotorlanding.diagnose_run import measured_for_diagnosis
+
+    clearance, _, meas, _ = measured_for_diagnosis(root / "scenarios" / "paper" / "backward_whirl_landing.toml",
+                                                   root / "scenarios" / "measured" / "paper_table1.toml", [])
+    assert clearance == C and meas["whirl_direction"] == ("backward", None) and len(meas) == 5
 
 
 @pytest.mark.parametrize("text, words", [
