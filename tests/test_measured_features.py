@@ -245,3 +245,22 @@ def test_report_step_line_does_not_call_an_unnamed_candidate_named():
     assert line.startswith("Step 2: the best candidate, bearings.DE.clearance, re-fitted") and "not named" in line
     steps[1]["named"] = "bearings.DE.clearance"
     assert "joint re-fit of everything named so far with bearings.DE.clearance" in _step_lines(steps)[0]
+
+
+def test_whirl_direction_rule_ignores_a_direction_the_noise_drops_already_have():
+    """The paper's Table 2 (issue 20): at 3000 rpm the centred drop of the rig does not whirl at the
+    DE, 3 of the 4 off-centre drops of the noise gate whirl forward; a candidate that turns the
+    centred drop forward there has not brought a whirl regime, and the naming rule must not count it."""
+    from rotorlanding.diagnose_run import Point, whirl_direction_fixed
+
+    pts = [Point("rpm_3000"), Point("rpm_7000"), Point("rpm_10000")]
+    measured = ["forward"] * 3
+    before, after = ["none", "none", "forward"], ["forward", "forward", "forward"]
+    noise = [["forward", "none", "forward"], ["none", "none", "forward"], ["forward", "none", "forward"],
+             ["forward", "none", "forward"]]
+    assert whirl_direction_fixed(pts, measured, before, after, noise) == (["rpm_7000"], ["rpm_3000"])
+    # without members (a given gate) every fixed point counts, as before
+    assert whirl_direction_fixed(pts, measured, before, after, []) == (["rpm_3000", "rpm_7000"], [])
+    # a member whirling the other way is no evidence either way
+    assert whirl_direction_fixed(pts, measured, before, after, [["backward", "backward", "forward"]])[0] == \
+        ["rpm_3000", "rpm_7000"]
