@@ -327,7 +327,7 @@ def cmd_diagnose(args) -> int:
     for w in res["warnings"]:
         print(f"rotorlanding: warning: {w}", file=sys.stderr)
     print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f} (noise gate {res['noise_gate']:.3f}, "
-          f"{res['noise']['source']}); named effect: {res['named_effect']} "
+          f"{res['noise']['source']}); explanation: {res['explanation']}; named effect: {res['named_effect']} "
           f"({res['simulations']} simulations, {res['wall_s']:.0f} s)")
     if res["absent_in_model_before"]:
         print("  the model cannot produce: " + ", ".join(res["absent_in_model_before"]))

@@ -155,6 +155,26 @@ def test_paper_table_agrees_with_validate_paper(tmp_path):
     assert f["DE_vertical_max_m"][1] == pytest.approx(0.1 * C) and f["whirl_frequency_hz"][1] == pytest.approx(2.0)
 
 
+def test_paper_table1_agrees_with_validate_paper():
+    from rotorlanding.features import features_from_table
+    from rotorlanding.validate import paper
+
+    root = Path(__file__).resolve().parents[1]
+    m = load_measurement(root / "scenarios" / "measured" / "paper_table1.toml")
+    t1 = paper()["table1"]["experimental"]
+    assert not m.points and m.features == {
+        "whirl_direction": "backward", "whirl_frequency_hz": t1["frequency_hz"], "whirl_onset_s": t1["onset_s"],
+        "DE_vertical_max_m": t1["v_disp_max_m"], "DE_vertical_min_m": t1["v_disp_min_m"]}
+    f = features_from_table(m.features, C)
+    assert f["DE_vertical_min_m"][1] == pytest.approx(0.1 * C) and f["whirl_onset_s"][1] == pytest.approx(0.05)
+    # what diagnose compares its model with (no simulation): one point, the scenario as it is
+    from rotorlanding.diagnose_run import measured_for_diagnosis
+
+    clearance, _, meas, _ = measured_for_diagnosis(root / "scenarios" / "paper" / "backward_whirl_landing.toml",
+                                                   root / "scenarios" / "measured" / "paper_table1.toml", [])
+    assert clearance == C and meas["whirl_direction"] == ("backward", None) and len(meas) == 5
+
+
 @pytest.mark.parametrize("text, words", [
     ('[points.a]\nset.operating.speed_rpm = 3000.0\nfeatures.whirl_frequency_mhz = 48.0\n',
      ["points.a.features.whirl_frequency_mhz", "wrong unit", "whirl_frequency_hz"]),
@@ -199,3 +219,56 @@ def test_bad_diagnose_options_one_line_errors(tmp_path, capsys, extra, words):
                  "--out", str(tmp_path / "o")] + extra) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and all(w in err for w in words), err
+
+
+def test_diagnose_summary_line_says_a_parameter_explains(monkeypatch, capsys, tmp_path):
+    """The paper's Table 2 (issue 20): the report named the coupling hub's mass while the command's
+    summary line said only 'named effect: None'; it now gives the explanation as well."""
+    import rotorlanding.diagnose_run as dr
+    from rotorlanding.cli import main
+
+    res = {"warnings": [], "gap_before": 2.076, "gap_after": 1.511, "noise_gate": 1.396,
+           "noise": {"source": "4 drops from a 5 um circle"}, "named_effect": None, "named_effects": [],
+           "explanation": "parameter", "signatures": {}, "unexplained": False, "absent_in_model_before": [],
+           "named_parameters": [{"key": "rotor.disks.3.mass", "from": 4.0, "to": 1.0, "bound": [1.0, 8.0]}],
+           "points": [{"name": "a"}], "simulations": 321, "wall_s": 368.0}
+    monkeypatch.setattr(dr, "run_diagnose", lambda *a, **k: (res, ["report.md"]))
+    assert main(["diagnose", "--measured", "m.toml", "--scenario", "s.toml", "--out", str(tmp_path / "o")]) == 0
+    out = capsys.readouterr().out
+    assert "explanation: parameter; named effect: None" in out and "parameter rotor.disks.3.mass: 4.0 -> 1" in out
+
+
+def test_report_step_line_does_not_call_an_unnamed_candidate_named():
+    """The paper's Table 1 with --max-effects 2 (issue 20): step 2's best candidate (the DE
+    clearance) was re-fitted with the named k_rib and not named, and the report listed it under
+    'joint re-fit of everything named so far'."""
+    from rotorlanding.diagnose_run import _step_lines
+
+    refit = {"gap_before_refit": 1.605, "gap_after_refit": 1.605,
+             "values": {"bearings.DE.k_rib": {"bearings.DE.k_rib": 4.18e7},
+                        "bearings.DE.clearance": {"bearings.DE.clearance": 1.88e-4}}}
+    steps = [{"named": "bearings.DE.k_rib", "refit": None, "candidates": [{"effect": "bearings.DE.k_rib"}]},
+             {"named": None, "refit": refit, "candidates": [{"effect": "bearings.DE.clearance"}]}]
+    (line,) = _step_lines(steps)
+    assert line.startswith("Step 2: the best candidate, bearings.DE.clearance, re-fitted") and "not named" in line
+    steps[1]["named"] = "bearings.DE.clearance"
+    assert "joint re-fit of everything named so far with bearings.DE.clearance" in _step_lines(steps)[0]
+
+
+def test_whirl_direction_rule_ignores_a_direction_the_noise_drops_already_have():
+    """The paper's Table 2 (issue 20): at 3000 rpm the centred drop of the rig does not whirl at the
+    DE, 3 of the 4 off-centre drops of the noise gate whirl forward; a candidate that turns the
+    centred drop forward there has not brought a whirl regime, and the naming rule must not count it."""
+    from rotorlanding.diagnose_run import Point, whirl_direction_fixed
+
+    pts = [Point("rpm_3000"), Point("rpm_7000"), Point("rpm_10000")]
+    measured = ["forward"] * 3
+    before, after = ["none", "none", "forward"], ["forward", "forward", "forward"]
+    noise = [["forward", "none", "forward"], ["none", "none", "forward"], ["forward", "none", "forward"],
+             ["forward", "none", "forward"]]
+    assert whirl_direction_fixed(pts, measured, before, after, noise) == (["rpm_7000"], ["rpm_3000"])
+    # without members (a given gate) every fixed point counts, as before
+    assert whirl_direction_fixed(pts, measured, before, after, []) == (["rpm_3000", "rpm_7000"], [])
+    # a member whirling the other way is no evidence either way
+    assert whirl_direction_fixed(pts, measured, before, after, [["backward", "backward", "forward"]])[0] == \
+        ["rpm_3000", "rpm_7000"]
