@@ -132,7 +132,7 @@ def judge(case: dict, res: dict) -> bool:
     return (res["explanation"] == "parameter" and [q["key"] for q in res["named_parameters"]] == truth)
 
 
-def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",)) -> dict:
+def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1) -> dict:
     from sensor_model import C, KNOWN_RIG, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis
@@ -149,7 +149,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",)) -> d
     # as the command does: the drop is detected, the record's noise measured (info)
     clearance, _, meas, info = measured_for_diagnosis(model, rec, [], None)
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
-                   max_effects=case["max_effects"], journals=journals)
+                   max_effects=case["max_effects"], journals=journals, ensemble=ensemble)
     wall = time.perf_counter() - t0
     named = res["named_effects"] + [q["key"] for q in res["named_parameters"]]
     return {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
@@ -201,6 +201,7 @@ def main(argv=None) -> int:
     ap.add_argument("--fresh", action="store_true")
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--journals", default="DE", help="diagnose --journals: DE (default) or DE,NDE")
+    ap.add_argument("--ensemble", type=int, default=1, help="diagnose --ensemble: drops per model variant (default 1)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -219,7 +220,7 @@ def main(argv=None) -> int:
             if case["case"] in done or (only and case["case"] not in only):
                 continue
             try:
-                row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")))
+                row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],
