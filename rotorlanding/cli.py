@@ -335,7 +335,7 @@ def cmd_diagnose(args) -> int:
         print(f"  {n}: {res['signatures'][n]}")
     for q in res["named_parameters"]:
         print(f"  parameter {q['key']}: {q['from']} -> {q['to']:.4g} (bound {q['bound'][0]:g}-{q['bound'][1]:g})")
-    if res["decisive_features"] and (res["named_effects"] or res["named_parameters"]):
+    if res.get("decisive_features") and (res["named_effects"] or res["named_parameters"]):
         print("  decided on: " + ", ".join(f"{d['feature']}" + (f" ({d['point']})" if d["point"] else "")
                                           + f" {100 * d['share']:.0f} %" for d in res["decisive_features"]))
     if res["unexplained"]:
