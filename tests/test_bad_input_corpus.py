@@ -750,10 +750,17 @@ def test_every_shipped_input_still_loads():
         elif f.name == "reference.toml":  # the paper's numbers (validate.paper reads them)
             assert set(data) == {"table1", "table2", "fig39"}
             kinds["paper numbers"] += 1
+        elif f.parent.name == "measured":  # a measured feature table (diagnose --measured): it reads
+            from rotorlanding.measured import load_measurement
+
+            m = load_measurement(f)
+            assert m.points or m.features
+            kinds["measured feature table"] += 1
         else:
-            kinds["other"] += 1  # the measured feature table
+            kinds["other"] += 1
     assert kinds == {"scenario": 7, "coastdown": 2, "rotor": 2, "fit-modes space": 4, "sweep": 1,
-                     "calibration space": 4, "paper numbers": 1, "other": 1, "rig overlay": 1, "whirl map": 1}
+                     "calibration space": 4, "paper numbers": 1, "measured feature table": 2, "rig overlay": 1,
+                     "whirl map": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():
             for p in effect.parameters:
