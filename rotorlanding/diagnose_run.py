@@ -341,11 +341,22 @@ def _calibrate(sim: _Simulator, name: str, terms: list[Term], maxiter: int) -> d
         g, rows, sims, err = sim.gap(on)
         return {"effect": name, "kind": "effect", "gap": g, "parameters": {}, "rows": rows, "k": 0, "sims": sims,
                 "directions": _directions(sims), "term": Term("effect", name), **({"failed": err} if err else {})}
+    # every parameter of the effect, jointly (issue 20, point 4): the first over its bounds with the
+    # others at their scenario values, then one round of coordinate descent over the others with the
+    # first held, each bounded; k counts them all, so a second freedom must pay for itself
     p = eff.parameters[0]
     fit = _fit_1d(sim, on, p, maxiter)
-    return {"effect": name, "kind": "effect", "gap": fit["gap"], "parameters": {p.name: fit["x"]}, "rows": fit["rows"],
-            "k": 1, "directions": _directions(fit["sims"]), "evaluations": fit["evaluations"], "sims": fit["sims"],
-            "term": Term("effect", name, (p,), {p.name: fit["x"]})}
+    term = Term("effect", name, tuple(eff.parameters), {p.name: fit["x"]})
+    best, evaluations = fit, fit["evaluations"]
+    for q in eff.parameters[1:]:
+        fq = _fit_1d(sim, on + term.overrides()[1:], q, maxiter)
+        evaluations += fq["evaluations"]
+        if fq["gap"] < best["gap"]:
+            term.values[q.name] = fq["x"]
+            best = fq
+    return {"effect": name, "kind": "effect", "gap": best["gap"], "parameters": dict(term.values), "rows": best["rows"],
+            "k": len(eff.parameters), "directions": _directions(best["sims"]), "evaluations": evaluations,
+            "sims": best["sims"], "term": term}
 
 
 #: the scenario's uncertain parameters diagnose tries by default (when the scenario has a
@@ -430,8 +441,9 @@ def _refit(sim: _Simulator, terms: list[Term], maxiter: int, start: dict) -> dic
     best = dict(start)
     for t in terms:
         for p in t.params:
-            fixed = _terms_overrides(terms, skip=t) + [o for q in t.params if q is not p for o in
-                                                      _param_overrides(q, t.values[q.name])]
+            # a parameter without a value kept its scenario value (its fit did not lower the gap)
+            fixed = _terms_overrides(terms, skip=t) + [o for q in t.params if q is not p and q.name in t.values
+                                                      for o in _param_overrides(q, t.values[q.name])]
             fit = _fit_1d(sim, fixed, p, maxiter)
             if fit["gap"] < best["gap"]:
                 t.values[p.name] = fit["x"]

@@ -54,7 +54,12 @@ DIAGNOSIS = {
                             "load dips, and the slip friction feeds a backward whirl of the order of the "
                             "clearance that starts tenths of a second after the drop",
                             (Parameter("worn_drag_torque", ("bearings.DE.worn_drag_torque",
-                                                            "bearings.NDE.worn_drag_torque"), 0.1, 5.0, True),),
+                                                            "bearings.NDE.worn_drag_torque"), 0.1, 5.0, True),
+                             # the drag develops over this race rotation (the backward onset: Table 1's
+                             # 0.4 s); one revolution to ~1000 rad (1.4 s of race rotation at 7000 rpm)
+                             Parameter("worn_drag_growth_angle", ("bearings.DE.worn_drag_growth_angle",
+                                                                  "bearings.NDE.worn_drag_growth_angle"),
+                                       6.28, 1000.0, True)),
                             fault=True),
     "windage": _d("rotor deceleration growing with speed squared, present before and after "
                   "contact; races unaffected", (Parameter("c_w2", ("spin.c_w2",), 1e-8, 2e-6, True),)),

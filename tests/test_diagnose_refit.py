@@ -4,6 +4,8 @@ re-fit of everything named so far. Data from our own sensor model (tests/sensor_
 import sys
 from pathlib import Path
 
+import pytest
+
 from rotorlanding.diagnose_run import _simulate_features, diagnose, measured_for_diagnosis
 from rotorlanding.features import gap
 
@@ -36,3 +38,46 @@ def test_axial_rub_and_outer_race_coulomb_both_named_after_a_joint_refit(tmp_pat
     reachable, _ = gap(meas, _simulate_features(model, TRUTH, C))
     assert res["gap_after"] <= max(reachable, res["noise_gate_final"])
     assert res["explanation"] == "effect" and not res["unexplained"]
+
+
+def test_every_parameter_of_an_effect_is_calibrated_jointly():
+    """Issue 20, point 4: an effect with two parameters (the worn-bearing drag: its torque and the
+    rotation over which it develops) gets both fitted within their bounds, and the score charges
+    both. A smooth, separable gap stands in for the landings, so the search itself is what is
+    tested: the minimum of sqrt(ln(T/1.7)^2 + ln(phi/90)^2) lies inside both bounds."""
+    import math
+    from pathlib import Path
+
+    from rotorlanding.diagnose_run import Point, _calibrate
+
+    root = Path(__file__).resolve().parents[1]
+
+    class FakeSim:
+        scenario_path = str(root / "scenarios" / "paper" / "backward_whirl_landing.toml")
+        points = [Point("p", [])]
+
+        def overrides(self, p, extra):
+            return list(extra)
+
+        def gap(self, extra):
+            vals = {}
+            for o in extra:
+                k, _, v = o.partition("=")
+                if k.endswith("worn_drag_torque"):
+                    vals["T"] = float(v)
+                elif k.endswith("worn_drag_growth_angle"):
+                    vals["phi"] = float(v)
+            g = math.hypot(math.log(vals.get("T", 3.41) / 1.7), math.log(vals.get("phi", 144.7) / 90.0))
+            return g, [{"feature": "f", "distance": g, "weight": 1.0}], [{"whirl_direction": ("backward", None)}], None
+
+        def gaps(self, extras):
+            return [self.gap(e) for e in extras]
+
+    r = _calibrate(FakeSim(), "worn_bearing_drag", [], maxiter=20)
+    assert r["k"] == 2
+    assert r["parameters"]["worn_drag_torque"] == pytest.approx(1.7, rel=0.02)
+    assert r["parameters"]["worn_drag_growth_angle"] == pytest.approx(90.0, rel=0.03)
+    assert r["gap"] < 0.03
+    assert sorted(o.split("=")[0] for o in r["term"].overrides()) == sorted([
+        "effects.worn_bearing_drag", "bearings.DE.worn_drag_torque", "bearings.NDE.worn_drag_torque",
+        "bearings.DE.worn_drag_growth_angle", "bearings.NDE.worn_drag_growth_angle"])
