@@ -7,11 +7,16 @@ static sleeve reactions and the forward (f) / backward (b) modes with DE / NDE s
 
 usage (from the repository root): python docs/studies/coupling_screen.py [ROTOR.toml] [k_c ...]"""
 import copy
+import importlib.util
 import sys
+from pathlib import Path
 
 import numpy as np
 
-import modal_screen as ms  # the sibling study tool (this script's folder is on sys.path when run)
+# the sibling study tool, by its path: importable from any working directory and any caller
+_spec = importlib.util.spec_from_file_location("modal_screen", Path(__file__).with_name("modal_screen.py"))
+ms = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(ms)
 
 
 def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
@@ -24,19 +29,7 @@ def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
     sysm = ms.full_model(fe).with_supports()
     u = np.linalg.solve(sysm.K, sysm.gravity_load())
     reac = {s.station: -s.kzz * u[fe.dof(s.station, "z")] for s in fe.rotor.supports}
-    de, nde = fe.dof("DE_sleeve", "y"), fe.dof("NDE_sleeve", "y")
-    modes = {}
-    for sp in speeds:
-        row = []
-        for m in ms.modal_analysis(sysm, sp).modes:
-            if m.frequency_hz > fmax:
-                break
-            sh = m.shape
-            amax = max(abs(sh[i]) + abs(sh[i + 1]) for i in range(0, len(sh), 4))
-            row.append((m.whirl[0], m.frequency_hz, (abs(sh[de]) + abs(sh[de + 1])) / amax,
-                        (abs(sh[nde]) + abs(sh[nde + 1])) / amax))
-        modes[sp] = row
-    return reac, modes
+    return reac, {sp: ms.mode_rows(sysm, fe, sp, fmax) for sp in speeds}
 
 
 if __name__ == "__main__":

@@ -28,22 +28,26 @@ def evaluate(data, krib=6.3e7, speeds=(3000, 7000, 10000), show=True, fmax=160):
         iz = fe.dof(s.station, "z")
         reac[s.station] = -s.kzz * u[iz]
     out = {"mass": fe.mass, "reactions": reac, "modes": {}}
-    de, nde = fe.dof("DE_sleeve", "y"), fe.dof("NDE_sleeve", "y")
     for sp in speeds:
-        res = modal_analysis(sysm, sp)
-        fw = []
-        for m in res.modes:
-            if m.frequency_hz > fmax: break
-            sh = m.shape
-            a_de = abs(sh[de]) + abs(sh[de + 1]); a_nde = abs(sh[nde]) + abs(sh[nde + 1])
-            amax = max(abs(sh[i]) + abs(sh[i + 1]) for i in range(0, len(sh), 4))
-            fw.append((m.whirl[0], round(m.frequency_hz, 1), round(a_de / amax, 2), round(a_nde / amax, 2)))
-        out["modes"][sp] = fw
+        out["modes"][sp] = [(w, round(f, 1), round(a, 2), round(b, 2)) for w, f, a, b in mode_rows(sysm, fe, sp, fmax)]
     if show:
         print(f"mass {fe.mass:.1f} kg, Ip total {fe.polar_inertia:.2f}; reactions " + ", ".join(f"{k} {v:.0f} N" for k, v in reac.items()), f"k_sup {ksup(krib):.3g}")
         for sp, fw in out["modes"].items():
             print(f"  {sp:5d} rpm: " + "  ".join(f"{w}{f}(DE{a},NDE{b})" for w, f, a, b in fw))
     return out
+
+def mode_rows(sysm, fe, speed_rpm, fmax=160):
+    """(whirl sense, frequency [Hz], DE and NDE sleeve share of the largest nodal amplitude) of every
+    mode up to ``fmax`` at ``speed_rpm``."""
+    de, nde = fe.dof("DE_sleeve", "y"), fe.dof("NDE_sleeve", "y")
+    rows = []
+    for m in modal_analysis(sysm, speed_rpm).modes:
+        if m.frequency_hz > fmax: break
+        sh = m.shape
+        amax = max(abs(sh[i]) + abs(sh[i + 1]) for i in range(0, len(sh), 4))
+        rows.append((m.whirl[0], m.frequency_hz, (abs(sh[de]) + abs(sh[de + 1])) / amax,
+                     (abs(sh[nde]) + abs(sh[nde + 1])) / amax))
+    return rows
 
 def load(path, sets=()):
     data = load_toml(path)
