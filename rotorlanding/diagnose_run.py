@@ -582,7 +582,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                 + (": the given offset fits worse" if worse else ""))
         current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
         adjusted: list[str] = []
-        step_gate = gate
+        step_gate, gate_now = gate, None   # gate_now: (overrides, _noise_gate) of the model named so far
         for k_step in range(max_effects):
             lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
             if candidates:
@@ -681,18 +681,22 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                 # had tamed the landing (bench: windage + radial friction); the model as given keeps
                 # its say where a first fit off the truth makes the landing wilder (mu_ax 0.42 for 0.3:
                 # gate 1.12, which hid a second effect that took the gap 1.11 -> 0.33)
-                g_now = _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, _terms_overrides(terms),
-                                    journals=journals)["gate"]
-                noise_history.append(g_now)
-                step_gate = min(gate, g_now)
+                fixed_now = _terms_overrides(terms)
+                gate_now = (fixed_now, _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, fixed_now,
+                                                   journals=journals))
+                noise_history.append(gate_now[1]["gate"])
+                step_gate = min(gate, gate_now[1]["gate"])
         if terms and noise_gap is None:
             # what stays unexplained is judged against the gate of the final model: a landing with the
-            # named changes can be more (or less) chaotic than without them. Each step's naming keeps
-            # the gate of the model as given: re-estimated per step, a wrong first value (mu_ax 0.42
-            # for 0.3) made the gate 1.12 and hid a second effect that took the gap 1.11 -> 0.33
-            noise_final = _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, _terms_overrides(terms),
-                                      journals=journals)
-            noise_history.append(noise_final["gate"])
+            # named changes can be more (or less) chaotic than without them. When the last step named
+            # nothing, that model's gate is the one the step was judged against: not simulated again
+            fixed_now = _terms_overrides(terms)
+            if gate_now is not None and gate_now[0] == fixed_now:
+                noise_final = gate_now[1]
+            else:
+                noise_final = _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, fixed_now,
+                                          journals=journals)
+                noise_history.append(noise_final["gate"])
             final_gate = noise_final["gate"]
         else:
             noise_final, final_gate = None, gate
@@ -747,7 +751,7 @@ def _between(n: int, radius_m: float | None = None) -> list[list[str]]:
 
 
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
-                fixed: list[str] | None = None, journals=None) -> dict:
+                fixed: list[str] | None = None, journals=DEFAULT_JOURNALS) -> dict:
     """The gap noise alone produces, estimated, not assumed: the model as it is dropped from
     ``members`` points of a 5 um circle (``ensemble.drop_offsets``: a real rotor is never dropped
     exactly centred, and a rattling landing is chaotic), with the measured record's own sensor
@@ -773,7 +777,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
         # Noticed, left: a member also counts DE features the record lacks (no force channels);
         # keeping only the record's features moved one test's gate from below its gap to 0.5648
         # against 0.5639 (tests/test_diagnose.py, ball drag), session 13
-        sims = [_journal_rows(s, journals or DEFAULT_JOURNALS) for s in sims]
+        sims = [_journal_rows(s, journals) for s in sims]
         g, rows = gap_points(sims, sims0, [p.name for p in sim.points])
         if math.isfinite(g):
             gaps.append(g)
