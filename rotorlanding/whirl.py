@@ -566,11 +566,7 @@ def longest_whirl(times: dict) -> str | None:
     """The bearing with the longest whirl time in ``times`` (name -> s, in order of first whirl:
     the earlier wins a tie), None when empty: the whirl bearing of a coast-down, whose chunks may
     each name a different one."""
-    best = None
-    for name, sec in times.items():
-        if best is None or sec > times[best]:
-            best = name
-    return best
+    return max(times, key=times.get) if times else None  # max keeps the first of equal times
 
 
 def _onset(w: dict) -> float:
