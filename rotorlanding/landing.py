@@ -34,7 +34,7 @@ import numpy as np
 from .params import BearingLaws, RotorLaws, bearing_laws, rotor_laws
 from .reduction import LinearRotor, craig_bampton
 from .scenario import Scenario
-from .timoshenko import GRAVITY, RotorFE, assemble
+from .timoshenko import GRAVITY, RotorFE, assemble, with_landing_supports
 
 
 @dataclass
@@ -125,7 +125,7 @@ class LandingSpec:
 def build_spec(scenario: Scenario, *, reduction=None) -> LandingSpec:
     """The landing's equations from a scenario. ``reduction``: the Craig-Bampton function to use
     (a study passes its ``runner.ReductionCache``; default ``reduction.craig_bampton``)."""
-    fe = assemble(scenario.rotor)
+    fe = with_landing_supports(assemble(scenario.rotor))
     red = scenario.rotor.reduction
     n_modes = red.modes if scenario.effects["rotor_flexibility"] else 0
     cb = (reduction or craig_bampton)(fe, red.boundary_stations, n_modes, rotations=False)

@@ -102,13 +102,16 @@ def load_space(path) -> dict:
 
 
 def rotor_with(rotor_data: dict, values: dict, support_stiffness: float | None = None) -> dict:
-    """A copy of the rotor file data with ``values`` set (and every support at the stiffness)."""
+    """A copy of the rotor file data with ``values`` set (and every support that stands in for a
+    landed catcher bearing at the stiffness; an ``in_landing`` support, e.g. the motor coupling,
+    keeps its own)."""
     data = copy.deepcopy(rotor_data)
     for k, v in values.items():
         set_dotted(data, k, float(v), must_exist=True)
     if support_stiffness is not None:
         for s in data["rotor"].get("supports", []):
-            s["kyy"] = s["kzz"] = float(support_stiffness)
+            if not s.get("in_landing", False):
+                s["kyy"] = s["kzz"] = float(support_stiffness)
     return data
 
 

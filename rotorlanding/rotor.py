@@ -125,7 +125,10 @@ class Disk:
 
 @dataclass(frozen=True)
 class Support:
-    """Linear support at a station (used by modal analysis, not by the landing model)."""
+    """Linear support at a station. Modal analysis uses every support; the landing model only
+    those with ``in_landing`` (a part of the machine that is there during the landing too, e.g.
+    the motor coupling; the others stand in for the landed catcher bearings, which the landing
+    models itself)."""
 
     station: str
     kyy: float = 0.0  # N/m
@@ -136,6 +139,7 @@ class Support:
     czz: float = 0.0
     cyz: float = 0.0
     czy: float = 0.0
+    in_landing: bool = False  # also a spring-damper to ground in the landing model, relaxed on the levitated axis
 
 
 @dataclass(frozen=True)
@@ -373,6 +377,7 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
                 raise InputError(s._field(key), v, f"|value| must be <= {cap:g} {'N/m' if key[0] == 'k' else 'N s/m'} "
                                  "(stiffer than any bearing or foundation x1000: beyond it the modal problem loses "
                                  "the rotor's own stiffness to rounding)")
+        kw["in_landing"] = s.boolean("in_landing", False)
         s.finish()
         supports.append(Support(**kw))
 

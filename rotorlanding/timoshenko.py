@@ -40,7 +40,7 @@ Shear coefficient: Cowper (1966) for a hollow circle, :func:`cowper_shear_coeffi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -270,11 +270,14 @@ def assemble(rotor: Rotor) -> RotorFE:
     return RotorFE(rotor, nodes, M, K, G, C, stations, disk_nodes, mass, ip_total)
 
 
-def support_matrices(fe: RotorFE) -> tuple[np.ndarray, np.ndarray]:
-    """Full-size stiffness and damping matrices of the rotor's linear supports."""
+def support_matrices(fe: RotorFE, *, in_landing_only: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """Full-size stiffness and damping matrices of the rotor's linear supports (``in_landing_only``:
+    of those that act in the landing model too)."""
     ks = np.zeros((fe.ndof, fe.ndof))
     cs = np.zeros((fe.ndof, fe.ndof))
     for s in fe.rotor.supports:
+        if in_landing_only and not s.in_landing:
+            continue
         iy, iz = fe.dof(s.station, "y"), fe.dof(s.station, "z")
         ks[iy, iy] += s.kyy
         ks[iz, iz] += s.kzz
@@ -285,3 +288,13 @@ def support_matrices(fe: RotorFE) -> tuple[np.ndarray, np.ndarray]:
         cs[iy, iz] += s.cyz
         cs[iz, iy] += s.czy
     return ks, cs
+
+
+def with_landing_supports(fe: RotorFE) -> RotorFE:
+    """The rotor as the landing model sees it: the free rotor plus the supports marked
+    ``in_landing`` (springs to ground relaxed on the levitated axis, so the AMBs' hold before the
+    drop is unchanged). Without such supports, ``fe`` itself."""
+    ks, cs = support_matrices(fe, in_landing_only=True)
+    if not (ks.any() or cs.any()):
+        return fe
+    return replace(fe, K=fe.K + ks, C=fe.C + cs)
