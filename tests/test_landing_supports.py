@@ -1,0 +1,107 @@
+"""Supports that act in the landing (`[[rotor.supports]] in_landing = true`, e.g. the motor coupling):
+parsed, added once, in force balance at rest and in the energy balance of a landing."""
+
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.config import load_toml
+from rotorlanding.errors import InputError
+from rotorlanding.postprocess import evaluate, summarize
+from rotorlanding.rotor import rotor_from_dict
+from rotorlanding.run import simulate
+from rotorlanding.scenario import scenario_from_dict
+from rotorlanding.timoshenko import GRAVITY, assemble, support_matrices, with_landing_supports
+
+ROOT = Path(__file__).resolve().parents[1]
+SCEN = ROOT / "scenarios" / "landing_7000rpm.toml"
+STEEL = {"youngs_modulus": 2.1e11, "poisson_ratio": 0.3, "density": 7850.0}
+
+
+def _rotor(supports):
+    return rotor_from_dict({"rotor": {
+        "materials": {"steel": STEEL},
+        "sections": [{"length": 0.5, "outer_diameter": 0.05, "material": "steel", "elements": 5}],
+        "stations": {"left": 0.0, "mid": 0.25, "right": 0.5},
+        "supports": supports}})
+
+
+def test_in_landing_is_off_unless_asked_and_checked():
+    r = _rotor([{"station": "left", "kyy": 1e7, "kzz": 1e7}, {"station": "mid", "kyy": 2e6, "kzz": 3e6, "in_landing": True}])
+    assert [s.in_landing for s in r.supports] == [False, True]
+    with pytest.raises(InputError, match=r"in_landing"):
+        _rotor([{"station": "mid", "kyy": 2e6, "in_landing": "yes"}])
+
+
+def test_only_in_landing_supports_are_added_once():
+    r = _rotor([{"station": "left", "kyy": 1e7, "kzz": 1e7}, {"station": "mid", "kyy": 2e6, "kzz": 3e6, "cyy": 50.0,
+                                                           "in_landing": True}])
+    fe = assemble(r)
+    fl = with_landing_supports(fe)
+    dk, dc = fl.K - fe.K, fl.C - fe.C
+    iy, iz = fe.dof("mid", "y"), fe.dof("mid", "z")
+    expected_k = np.zeros_like(dk)
+    expected_k[iy, iy], expected_k[iz, iz] = 2e6, 3e6
+    np.testing.assert_array_equal(dk, expected_k)
+    assert dc[iy, iy] == 50.0 and np.count_nonzero(dc) == 1
+    np.testing.assert_array_equal(fe.K, assemble(r).K)  # the free rotor is not changed in place
+    # modal analysis takes every support once, landing ones included
+    ks_all, _ = support_matrices(fe)
+    ks_land, _ = support_matrices(fe, in_landing_only=True)
+    np.testing.assert_array_equal(ks_land, expected_k)
+    assert ks_all[fe.dof("left", "y"), fe.dof("left", "y")] == 1e7
+    # none marked: the same object, so a rig without them is bit-for-bit the rig before
+    plain = assemble(_rotor([{"station": "left", "kyy": 1e7, "kzz": 1e7}]))
+    assert with_landing_supports(plain) is plain
+
+
+def _scenario(**changes):
+    data = load_toml(SCEN)
+    for dotted, value in changes.items():
+        node = data
+        keys = dotted.split("__")
+        for k in keys[:-1]:
+            node = node.setdefault(k, {})
+        node[keys[-1]] = value
+    return scenario_from_dict(copy.deepcopy(data), source=str(SCEN))
+
+
+def _with_coupling(sc, k):
+    rotor = sc.rotor
+    sup = [s for s in rotor.supports if s.station == "coupling"]
+    assert sup and sup[0].in_landing, "the rig rotor carries its motor coupling as an in-landing support"
+    from dataclasses import replace
+    supports = tuple(replace(s, kyy=k, kzz=k) if s.station == "coupling" else s for s in rotor.supports)
+    return replace(sc, rotor=replace(rotor, supports=supports))
+
+
+@pytest.mark.parametrize("k_c", [0.0, 2.0e6])
+def test_rotor_at_rest_is_in_force_balance_with_the_coupling(k_c):
+    """A non-rotating drop settles; then the weight is carried by the two catcher contacts and the
+    coupling spring, k_c times the coupling hub's displacement from the levitated axis (vertical
+    force balance of the whole rotor, an independent check of the spring's sign and size)."""
+    sc = _with_coupling(_scenario(operating__speed_rpm=0.0, operating__t_end=0.4,
+                                  rotor__damping={"mass_proportional": 40.0}, effects__windage=False), k_c)
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"]
+    series = evaluate(spec, t, q, v)
+    node = spec.fe.station_nodes["coupling"]
+    z_c = float(spec.cb.T[4 * node + 1] @ q[-1, :spec.n_lat])
+    contacts = sum(series[f"{b.name}_contact_force_z_n"][-1] for b in spec.bearings)
+    coupling = -k_c * z_c
+    weight = spec.rotor_mass * GRAVITY
+    assert contacts + coupling == pytest.approx(weight, rel=2e-3)
+    if k_c:
+        assert z_c < -1e-4            # the hub has dropped with the rotor ...
+        assert coupling > 0.1 * weight  # ... and the spring carries a real share
+
+
+def test_energy_balance_with_the_coupling():
+    sc = _with_coupling(_scenario(operating__t_end=0.25, solver__output_period=5e-5), 4.0e6)
+    spec, t, q, v, info = simulate(sc, progress=False)
+    assert info["complete"]
+    e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
+    assert e["dissipated_total_j"] > 10.0
+    assert e["balance_error_relative"] < 0.01, e
