@@ -2,7 +2,7 @@
 
 usage (from the repository root):
     python docs/studies/ensemble.py SCENARIO N [--t-end S] [--tag TAG] [--workers 2] [--rig OVERLAY.toml]
-                                    [--out study_out] [key=value ...]
+                                    [--out study_out] [--keep-h5] [key=value ...]
 
 Prints every drop (class, bearing, DE and NDE class, frequency, onset, DE displacement and force
 ranges) and the ensemble statistics of ``rotorlanding.ensemble``; writes OUT/TAG.json. The drops
@@ -24,22 +24,25 @@ def run_drop(job: tuple) -> dict:
     from rotorlanding.run import run_scenario
     from rotorlanding.scenario import load_scenario
 
-    scenario, sets, rig, out = job
+    scenario, sets, rig, out, keep_h5 = (*job, False)[:5]
     sc = load_scenario(scenario, sets, overlays=[rig] if rig else ())
     s = run_scenario(sc, Path(out), progress=False, plots=False)
+    if not keep_h5:  # ~8 MB per 1.2 s drop: a 1000-drop study would fill a disk (session 14 did)
+        (Path(out) / "results.h5").unlink(missing_ok=True)
     return {**member_result(s), "wall_s": s.get("performance", {}).get("wall_s"),
             "nde_direction": (s["whirl"].get("per_bearing") or {}).get("NDE", {}).get("direction")}
 
 
 def ensemble(scenario, n: int, sets=(), *, rig=None, t_end=None, workers: int = 2, out="study_out",
-             tag: str = "x") -> dict:
+             tag: str = "x", keep_h5: bool = False) -> dict:
     """The members and statistics of ``n`` drops; also written to ``out/tag.json``."""
     from rotorlanding.ensemble import drop_offsets, ensemble_stats
     from rotorlanding.runner import run_all
     from rotorlanding.safeio import atomic_write_text
 
     sets = list(sets) + ([f"operating.t_end={t_end}"] if t_end else [])
-    jobs = [(str(scenario), sets + extra, rig, str(Path(out) / tag / f"d{k}")) for k, extra in enumerate(drop_offsets(n))]
+    jobs = [(str(scenario), sets + extra, rig, str(Path(out) / tag / f"d{k}"), keep_h5)
+            for k, extra in enumerate(drop_offsets(n))]
     members = run_all(run_drop, jobs, workers, failures="raise", blas_threads=None)
     result = {"scenario": str(scenario), "overrides": sets, "rig": rig, "members": members,
               "stats": ensemble_stats(members)}
@@ -65,8 +68,10 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--rig", default=None, help="a rig overlay merged over the scenario (as validate --rig)")
     ap.add_argument("--out", default="study_out")
+    ap.add_argument("--keep-h5", action="store_true", help="keep each drop's results.h5 (~8 MB per 1.2 s drop)")
     a = ap.parse_args(argv)
-    r = ensemble(a.scenario, a.n, a.sets, rig=a.rig, t_end=a.t_end, workers=a.workers, out=a.out, tag=a.tag)
+    r = ensemble(a.scenario, a.n, a.sets, rig=a.rig, t_end=a.t_end, workers=a.workers, out=a.out, tag=a.tag,
+                 keep_h5=a.keep_h5)
     st = r["stats"]
     print(f"== {a.tag}: {a.scenario} {a.sets} n={a.n}")
     for k, m in enumerate(r["members"]):
