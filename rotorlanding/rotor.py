@@ -378,6 +378,12 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
                                  "(stiffer than any bearing or foundation x1000: beyond it the modal problem loses "
                                  "the rotor's own stiffness to rounding)")
         kw["in_landing"] = s.boolean("in_landing", False)
+        if kw["in_landing"] and kw["kyz"] != kw["kzy"]:
+            # in the landing the support joins K before the Craig-Bampton reduction, whose solves assume
+            # a symmetric K, and the energy ledger books 1/2 q^T K q: an unsymmetric (circulatory)
+            # stiffness would be reduced wrongly and its work left out
+            raise InputError(s._field("kzy"), kw["kzy"], f"must equal kyz ({kw['kyz']:g} N/m) when in_landing = true "
+                             "(a circulatory cross-coupled stiffness is allowed in modal analysis only)")
         s.finish()
         supports.append(Support(**kw))
 

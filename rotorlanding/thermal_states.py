@@ -111,12 +111,21 @@ class ModalStepper:
         """Temperatures after each interval (len(dt) x n) and the heat lost to ambient in each [J];
         ``heat`` (len(dt) x n): the energy into each node over each interval [J]."""
         vec, sq = np.ascontiguousarray(self.vec), self.sq
+        n = len(sq)
+        dt = np.ascontiguousarray(dt, dtype=float)
+        heat = np.ascontiguousarray(heat, dtype=float)
+        t0 = np.asarray(t0, float)
+        # the compiled loop does not check its indices: a wrong shape must fail here, not read past an array
+        if dt.ndim != 1 or heat.shape != (len(dt), n) or t0.shape != (n,):
+            raise ValueError(f"ModalStepper.run: dt must be 1-D, heat (len(dt), {n}) and t0 ({n},); got "
+                             f"{dt.shape}, {heat.shape}, {t0.shape}")
+        if len(dt) and not float(np.min(dt)) > 0.0:
+            raise ValueError(f"ModalStepper.run: every interval must be > 0 s (found {float(np.min(dt))!r})")
         s_amb = vec.T @ (self.g * self.t_amb / sq)
-        z0 = vec.T @ (sq * np.asarray(t0, float))
+        z0 = vec.T @ (sq * t0)
         # one compiled loop: a landing has ~2e4 intervals, and the per-interval numpy calls of a
         # Python loop cost ~0.2 s per bearing (a quarter of a validate member's time)
-        return _modal_run(vec, sq, self.lam, self.g, self.t_amb, s_amb, z0,
-                          np.ascontiguousarray(dt, dtype=float), np.ascontiguousarray(heat, dtype=float))
+        return _modal_run(vec, sq, self.lam, self.g, self.t_amb, s_amb, z0, dt, heat)
 
 
 @numba.njit(cache=True)

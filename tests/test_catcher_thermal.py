@@ -18,7 +18,7 @@ from rotorlanding.mechanisms import carried_series, evaluate, heat_routes
 from rotorlanding.run import simulate
 from rotorlanding.scenario import load_scenario
 from rotorlanding.thermal_states import NODE_SERIES, ModalStepper, network_for
-from user_forces.thermal import ThermalNetwork, catcher_bearing_network, step_exact
+from user_forces.thermal import CatcherThermalGeometry, ThermalNetwork, catcher_bearing_network, step_exact
 
 ROOT = Path(__file__).resolve().parents[1]
 LANDING = ROOT / "scenarios" / "landing_7000rpm.toml"
@@ -152,3 +152,17 @@ def test_a_hot_bearing_with_feedback_keeps_its_heat_capacities(landing):
         stored = float(np.sum(cap * (temps[-1] - temps[0])))
         hin, lost = s[b.name + "_heat_in_j"][-1], s[b.name + "_heat_lost_j"][-1]
         assert abs(hin - stored - lost) < 1e-9 * max(abs(hin), abs(lost))
+
+
+def test_modal_stepper_refuses_shapes_its_compiled_loop_would_overrun():
+    net = catcher_bearing_network(CatcherThermalGeometry())
+    st = ModalStepper(net)
+    dt = np.full(4, 1e-3)
+    with pytest.raises(ValueError, match="heat"):
+        st.run(dt, np.zeros((3, net.n)), np.full(net.n, net.t_ambient))
+    with pytest.raises(ValueError, match="heat"):
+        st.run(dt, np.zeros((4, net.n - 1)), np.full(net.n, net.t_ambient))
+    with pytest.raises(ValueError, match="> 0 s"):
+        st.run(np.array([1e-3, 0.0]), np.zeros((2, net.n)), np.full(net.n, net.t_ambient))
+    temps, lost = st.run(np.empty(0), np.empty((0, net.n)), np.full(net.n, net.t_ambient))
+    assert temps.shape == (0, net.n) and lost.shape == (0,)

@@ -105,3 +105,12 @@ def test_energy_balance_with_the_coupling():
     e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
     assert e["dissipated_total_j"] > 10.0
     assert e["balance_error_relative"] < 0.01, e
+
+
+def test_circulatory_stiffness_is_refused_in_the_landing():
+    """A cross-coupled stiffness with kyz != kzy is allowed for modal analysis, but not in the landing:
+    there it joins K before the (symmetric) Craig-Bampton solves and the energy ledger."""
+    _rotor([{"station": "mid", "kyz": 1e6, "kzy": -1e6}])  # modal only: fine
+    _rotor([{"station": "mid", "kyy": 1e6, "kyz": 2e5, "kzy": 2e5, "in_landing": True}])  # symmetric: fine
+    with pytest.raises(InputError, match=r"rotor\.supports\[0\]\.kzy.*must equal kyz"):
+        _rotor([{"station": "mid", "kyz": 1e6, "kzy": -1e6, "in_landing": True}])

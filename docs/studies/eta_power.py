@@ -2,7 +2,8 @@
 
 usage: python docs/studies/eta_power.py OUT/TAG [OUT/TAG ...] [--t0 0.8]
 
-For every drop directory OUT/TAG/dK (written by docs/studies/ensemble.py) prints, averaged over
+For every drop directory OUT/TAG/dK (written by ``docs/studies/ensemble.py --keep-h5``: since
+session 14 the ensemble tool deletes each drop's results.h5 unless asked to keep it) prints, averaged over
 t >= t0: the DE race / rotor speed ratio at the end, the DE contact load (mean, mean while in
 contact), the DE ribbon deflection |x_o| (race centre off the housing centre), the journal's orbit
 radius, and the powers: the contact force's work on the DE journal's lateral motion (the whirl
@@ -21,6 +22,8 @@ import numpy as np
 
 def drop(d: Path, t0: float) -> dict:
     s = json.loads((d / "summary.json").read_text())
+    if not (d / "results.h5").exists():
+        sys.exit(f"{d / 'results.h5'}: missing; run docs/studies/ensemble.py with --keep-h5")
     sc = None
     with h5py.File(d / "results.h5") as f:
         t = f["time_s"][:]
