@@ -115,12 +115,14 @@ def cmd_reduce(args) -> int:
     from .modal import reduction_report
     from .reduction import full_model, reduce_rotor
     from .rotor import load_rotor
-    from .timoshenko import assemble
+    from .timoshenko import assemble, with_landing_supports
 
     speeds = _speeds(args.speeds_rpm)
     rotor = load_rotor(args.file)
     _below_burst(rotor, speeds)
-    fe = assemble(rotor)
+    # the rotor the landing reduces: with the supports that act in the landing (e.g. the motor
+    # coupling) in K before the reduction; --free: the free rotor
+    fe = assemble(rotor) if args.free else with_landing_supports(assemble(rotor))
     try:
         red = reduce_rotor(fe)
     except InputError as err:

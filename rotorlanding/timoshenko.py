@@ -163,6 +163,9 @@ class RotorFE:
     disk_nodes: dict[str, int]
     mass: float  # total rotor mass, kg
     polar_inertia: float  # total polar moment of inertia about x, kg m^2
+    # True once the supports marked in_landing are in K and C (``with_landing_supports``): then
+    # ``support_matrices`` leaves them out, so ``with_supports`` of a model built on it cannot add them twice
+    landing_supports_included: bool = False
 
     @property
     def ndof(self) -> int:
@@ -276,7 +279,7 @@ def support_matrices(fe: RotorFE, *, in_landing_only: bool = False) -> tuple[np.
     ks = np.zeros((fe.ndof, fe.ndof))
     cs = np.zeros((fe.ndof, fe.ndof))
     for s in fe.rotor.supports:
-        if in_landing_only and not s.in_landing:
+        if (in_landing_only and not s.in_landing) or (s.in_landing and fe.landing_supports_included):
             continue
         iy, iz = fe.dof(s.station, "y"), fe.dof(s.station, "z")
         ks[iy, iy] += s.kyy
@@ -295,6 +298,6 @@ def with_landing_supports(fe: RotorFE) -> RotorFE:
     ``in_landing`` (springs to ground relaxed on the levitated axis, so the AMBs' hold before the
     drop is unchanged). Without such supports, ``fe`` itself."""
     ks, cs = support_matrices(fe, in_landing_only=True)
-    if not (ks.any() or cs.any()):
+    if not (ks.any() or cs.any()):  # (also when they are included already: then the matrices are zero)
         return fe
-    return replace(fe, K=fe.K + ks, C=fe.C + cs)
+    return replace(fe, K=fe.K + ks, C=fe.C + cs, landing_supports_included=True)

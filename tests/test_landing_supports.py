@@ -114,3 +114,27 @@ def test_circulatory_stiffness_is_refused_in_the_landing():
     _rotor([{"station": "mid", "kyy": 1e6, "kyz": 2e5, "kzy": 2e5, "in_landing": True}])  # symmetric: fine
     with pytest.raises(InputError, match=r"rotor\.supports\[0\]\.kzy.*must equal kyz"):
         _rotor([{"station": "mid", "kyz": 1e6, "kzy": -1e6, "in_landing": True}])
+
+
+def test_with_supports_never_adds_a_landing_support_twice():
+    """A model built on the landing's rotor (coupling already in K) gets only the other supports from
+    with_supports(): full and reduced models of the landing rotor agree with the free rotor plus all
+    supports."""
+    from rotorlanding.reduction import craig_bampton, full_model
+
+    r = _rotor([{"station": "left", "kyy": 1e7, "kzz": 1e7}, {"station": "right", "kyy": 1e7, "kzz": 1e7},
+                {"station": "mid", "kyy": 2e6, "kzz": 2e6, "in_landing": True}])
+    fe = assemble(r)
+    fl = with_landing_supports(fe)
+    assert fl.landing_supports_included and with_landing_supports(fl) is fl
+    np.testing.assert_allclose(full_model(fl).with_supports().K, full_model(fe).with_supports().K, rtol=0, atol=0)
+    a = craig_bampton(fl, ["left", "right"], 4).with_supports()
+    b = craig_bampton(fe, ["left", "right"], 4).with_supports()
+    # the landing rotor's reduction has the coupling inside its fixed-interface modes; the free
+    # rotor's gets it afterwards through T: both represent K_free + all supports, so their static
+    # boundary response agrees (Guyan is exact there)
+    ua = np.linalg.solve(a.K, a.gravity_load())[:4]
+    ub_full = np.linalg.solve(full_model(fe).with_supports().K, full_model(fe).gravity_load())
+    idx = [fe.dof(st, d) for st in ("left", "right") for d in ("y", "z")]
+    np.testing.assert_allclose(ua, ub_full[idx], rtol=1e-9, atol=1e-20)
+    assert b.K.shape == a.K.shape
