@@ -48,7 +48,7 @@ def coupling_sets(k: float) -> list[str]:
     return [f"rotor.supports.2.kyy={k}", f"rotor.supports.2.kzz={k}"]
 
 
-def static_loads(k: float) -> dict:
+def static_loads(k: float, sets=()) -> dict:
     """Rest on the catcher bearings without spin (0.6 s, rotor damped): contact loads and the
     coupling spring's share of the weight."""
     from rotorlanding.postprocess import evaluate
@@ -59,7 +59,7 @@ def static_loads(k: float) -> dict:
     from dataclasses import replace
 
     sc = load_scenario(ROOT / "scenarios/landing_7000rpm.toml",
-                       coupling_sets(k) + ["operating.speed_rpm=0", "operating.t_end=0.6", "effects.windage=false"])
+                       coupling_sets(k) + list(sets) + ["operating.speed_rpm=0", "operating.t_end=0.6", "effects.windage=false"])
     # damped (as tests/test_landing_supports.py) so that the rotor comes to rest instead of rocking
     sc = replace(sc, rotor=replace(sc.rotor, mass_proportional_damping=40.0))
     spec, t, q, v, info = simulate(sc, progress=False)
@@ -97,7 +97,7 @@ def main(argv=None) -> int:
     out = Path(a.out)
     for ks in a.k.split(","):
         k = float(ks)
-        s = static_loads(k)
+        s = static_loads(k, a.sets)
         print(f"k_c = {k:.3g} N/m: at rest DE {s['DE']:.0f} N, NDE {s['NDE']:.0f} N, coupling {s['coupling_n']:.0f} N "
               f"(weight {s['weight_n']:.0f} N), hub {s['hub_drop_mm']:.3f} mm below the levitated axis", flush=True)
         for name in a.cases.split(","):
