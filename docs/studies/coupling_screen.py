@@ -6,7 +6,6 @@ model (sleeves on k_sup = K_rib in series with balls and Hertz contact, as modal
 static sleeve reactions and the forward (f) / backward (b) modes with DE / NDE sleeve participation.
 
 usage (from the repository root): python docs/studies/coupling_screen.py [ROTOR.toml] [k_c ...]"""
-import copy
 import importlib.util
 import sys
 from pathlib import Path
@@ -20,9 +19,7 @@ _spec.loader.exec_module(ms)
 
 
 def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
-    data = copy.deepcopy(data)
-    for s in data["rotor"]["supports"]:
-        s["kyy"] = s["kzz"] = ms.ksup(krib)
+    data = ms.rotor_with(data, {}, ms.ksup(krib))  # the coupling entry of the rig rotor (in_landing) stays at its 0
     if k_c > 0:
         data["rotor"]["supports"].append({"station": "coupling", "kyy": k_c, "kzz": k_c, "cyy": 0.0, "czz": 0.0})
     fe = ms.assemble(ms.rotor_from_dict(data))

@@ -29,6 +29,7 @@ from scipy.optimize import differential_evolution
 
 from rotorlanding.config import load_toml
 from rotorlanding.modal import modal_analysis
+from rotorlanding.modefit import rotor_with
 from rotorlanding.reduction import full_model
 from rotorlanding.rotor import rotor_from_dict
 from rotorlanding.timoshenko import assemble
@@ -55,9 +56,7 @@ def rotor_data(p, base=None):
     for k in ("mass", "polar_inertia", "transverse_inertia"):
         r["disks"][2][k] *= scale
     r["sections"][3]["outer_diameter"] = shaft
-    for s in r["supports"]:
-        s["kyy"] = s["kzz"] = K_SUPPORT
-    return d
+    return rotor_with(d, {}, K_SUPPORT)  # catcher supports at K_SUPPORT; an in_landing one keeps its own
 
 
 def analyse(p, base=None):

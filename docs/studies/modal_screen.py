@@ -3,10 +3,11 @@ backward (b) modes at 3000 / 7000 / 10000 rpm with the DE and NDE sleeve partici
 largest nodal amplitude), at the paper's K_rib and +/- 50 % (in series with balls and Hertz contact).
 
 usage (from the repository root): python docs/studies/modal_screen.py ROTOR.toml [key=value ...]"""
-import sys, copy, numpy as np
+import sys, numpy as np
 from rotorlanding.config import load_toml, set_dotted
 from rotorlanding.rotor import rotor_from_dict
 from rotorlanding.timoshenko import assemble
+from rotorlanding.modefit import rotor_with
 from rotorlanding.reduction import full_model
 from rotorlanding.modal import modal_analysis
 
@@ -15,9 +16,9 @@ K_BALL, K_HZ = 1.5e8, 6e8
 def ksup(krib): return series(krib, K_BALL, K_HZ)
 
 def evaluate(data, krib=6.3e7, speeds=(3000, 7000, 10000), show=True, fmax=160):
-    data = copy.deepcopy(data)
-    for s in data["rotor"].get("supports", []):
-        s["kyy"] = s["kzz"] = ksup(krib)
+    # every support that stands in for a landed catcher bearing at k_sup; an in_landing one (the
+    # motor coupling) keeps its own stiffness (the same rule as fit-modes)
+    data = rotor_with(data, {}, ksup(krib))
     fe = assemble(rotor_from_dict(data))
     sysm = full_model(fe).with_supports()
     # static deflection and reactions
