@@ -1,18 +1,17 @@
 """Supports that act in the landing (`[[rotor.supports]] in_landing = true`, e.g. the motor coupling):
 parsed, added once, in force balance at rest and in the energy balance of a landing."""
 
-import copy
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from rotorlanding.config import load_toml
 from rotorlanding.errors import InputError
 from rotorlanding.postprocess import evaluate, summarize
 from rotorlanding.rotor import rotor_from_dict
 from rotorlanding.run import simulate
-from rotorlanding.scenario import scenario_from_dict
+from rotorlanding.scenario import load_scenario
 from rotorlanding.timoshenko import GRAVITY, assemble, support_matrices, with_landing_supports
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -57,24 +56,13 @@ def test_only_in_landing_supports_are_added_once():
     assert with_landing_supports(plain) is plain
 
 
-def _scenario(**changes):
-    data = load_toml(SCEN)
-    for dotted, value in changes.items():
-        node = data
-        keys = dotted.split("__")
-        for k in keys[:-1]:
-            node = node.setdefault(k, {})
-        node[keys[-1]] = value
-    return scenario_from_dict(copy.deepcopy(data), source=str(SCEN))
-
-
-def _with_coupling(sc, k):
-    rotor = sc.rotor
-    sup = [s for s in rotor.supports if s.station == "coupling"]
-    assert sup and sup[0].in_landing, "the rig rotor carries its motor coupling as an in-landing support"
-    from dataclasses import replace
-    supports = tuple(replace(s, kyy=k, kzz=k) if s.station == "coupling" else s for s in rotor.supports)
-    return replace(sc, rotor=replace(rotor, supports=supports))
+def _landing(k_c, *sets, damping=0.0):
+    """The 7000 rpm rig landing with the rig rotor's coupling entry at k_c, set the way a user sets it
+    (``--set rotor.supports.2.kyy=...``); ``damping``: the rotor's mass-proportional damping [1/s]."""
+    sc = load_scenario(SCEN, [f"rotor.supports.2.kyy={k_c}", f"rotor.supports.2.kzz={k_c}", *sets])
+    coupling = sc.rotor.supports[2]
+    assert coupling.station == "coupling" and coupling.in_landing and coupling.kzz == k_c
+    return replace(sc, rotor=replace(sc.rotor, mass_proportional_damping=damping)) if damping else sc
 
 
 @pytest.mark.parametrize("k_c", [0.0, 2.0e6])
@@ -82,8 +70,7 @@ def test_rotor_at_rest_is_in_force_balance_with_the_coupling(k_c):
     """A non-rotating drop settles; then the weight is carried by the two catcher contacts and the
     coupling spring, k_c times the coupling hub's displacement from the levitated axis (vertical
     force balance of the whole rotor, an independent check of the spring's sign and size)."""
-    sc = _with_coupling(_scenario(operating__speed_rpm=0.0, operating__t_end=0.4,
-                                  rotor__damping={"mass_proportional": 40.0}, effects__windage=False), k_c)
+    sc = _landing(k_c, "operating.speed_rpm=0", "operating.t_end=0.4", "effects.windage=false", damping=40.0)
     spec, t, q, v, info = simulate(sc, progress=False)
     assert info["complete"]
     series = evaluate(spec, t, q, v)
@@ -99,7 +86,7 @@ def test_rotor_at_rest_is_in_force_balance_with_the_coupling(k_c):
 
 
 def test_energy_balance_with_the_coupling():
-    sc = _with_coupling(_scenario(operating__t_end=0.25, solver__output_period=5e-5), 4.0e6)
+    sc = _landing(4.0e6, "operating.t_end=0.25", "solver.output_period=5e-5")
     spec, t, q, v, info = simulate(sc, progress=False)
     assert info["complete"]
     e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
