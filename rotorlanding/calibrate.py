@@ -77,6 +77,11 @@ def load_space(path) -> dict:
             raise InputError("ranges", ranges, "give at least one key = {min, max[, log]}")
         for k, r in ranges.items():
             range_spec(r, f"ranges.{k}", log=True)
+        # discrete choices made outside the search (read by validate's provenance labels)
+        for what, c in t.raw("choices", {}).items():
+            if not (isinstance(c, dict) and set(c) == {"options", "chosen", "judged_on", "record"}
+                    and isinstance(c["judged_on"], list) and all(j in CASES for j in c["judged_on"])):
+                raise InputError(f"choices.{what}", c, "a table {options, chosen, judged_on = [case, ...], record}")
         t.finish()
         _check_ranges(fixed, ranges, cases)
     return {"designs": sample_ranges(ranges, n, seed), "t_end": t_end, "verify_top": verify_top,

@@ -68,6 +68,12 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     bad.write_text('cases = ["fw9000"]\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.2}\n')
     assert main(["calibrate", str(bad)]) == 2
     assert "fw9000" in capsys.readouterr().err
+    # a [choices] entry judged on a case that does not exist: one line naming the field
+    bad.write_text('[choices]\n"the worn bearing" = {options = "DE / NDE", chosen = "DE", judged_on = ["bw3"], '
+                   'record = "x"}\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.2}\n')
+    assert main(["calibrate", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "choices.the worn bearing" in err and len(err.strip().splitlines()) == 1
 
 
 def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
