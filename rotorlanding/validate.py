@@ -67,11 +67,11 @@ QUICK_T_END = 0.5
 #: (the worn-bearing backward rattle; at 3000 rpm the DE journal whirls in 1 of 8 drops at the rig
 #: step and 4 of 8 at half of it, while the NDE journal whirls in all). Every case is judged the same way; the centred drop is
 #: still run for the per-case figures.
-#: The backward landing has 16: its onset is a random variable of the drop (the worn drag develops as
-#: the race turns), and a median of 8 such onsets moved by 0.1 s between draws. Its calibration
-#: (scenarios/calibration/worn_bearing.toml, ``ensemble``) scores the same drops. 32 since session 15:
-#: both sides of the mu_rad switch sit near 7 of 8 (27-30 of 32 on the DE-worn bearing), where an
-#: 8- or 16-drop count passes or fails on the draw.
+#: The backward landing has 32 (16 until session 14): its onset is a random variable of the drop (the
+#: worn drag develops as the race turns), and a median of 8 such onsets moved by 0.1 s between draws;
+#: and both sides of the mu_rad switch sit near 7 of 8 (27-30 of 32 on the DE-worn bearing), where an
+#: 8- or 16-drop count passes or fails on the draw. Its calibration
+#: (scenarios/calibration/worn_bearing.toml, ``ensemble``) scores the same drops.
 ENSEMBLE = {key: 32 if key == "backward_whirl" else 8 for key in CASES}
 #: drops of each study case (``studies``); the switch's calm side as many as its backward side
 STUDY_DROPS = 8

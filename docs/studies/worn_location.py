@@ -40,13 +40,18 @@ def _sibling(name: str):
     return mod
 
 
+def worn_drag(sc_raw: dict) -> tuple[float, float]:
+    """The scenario's worn torque [N m] and growth angle [rad], from whichever bearing carries them."""
+    b = sc_raw["bearings"]
+    src = b["DE"] if b["DE"].get("worn_drag_torque", 0.0) > 0 else b["NDE"]
+    return src["worn_drag_torque"], src["worn_drag_growth_angle"]
+
+
 def worn_sets(where: str, torque: float | None, sc_raw: dict) -> list[str]:
     """Overrides that put the worn drag on ``where`` (both / DE / NDE), with the scenario's (or the
     given) torque and growth angle on the worn bearing(s) and no worn drag on the other."""
-    b = sc_raw["bearings"]
-    src = b["DE"] if b["DE"].get("worn_drag_torque", 0.0) > 0 else b["NDE"]
-    t = src["worn_drag_torque"] if torque is None else torque
-    g = src["worn_drag_growth_angle"]
+    t, g = worn_drag(sc_raw)
+    t = t if torque is None else torque
     sets = []
     for name in ("DE", "NDE"):
         on = where in ("both", name)
@@ -83,12 +88,12 @@ def main(argv=None) -> int:
     torques = [None] if a.torques is None else [float(x) for x in a.torques.split(",")]
     out = Path(a.out)
     for t in torques:
-        t_w = worn_sets("both", t, raw)[0].split("=")[1]
-        print(f"T_w = {float(t_w):.3g} N m; static loads DE {loads['DE']:.0f} N, NDE {loads['NDE']:.0f} N; "
-              + ", ".join(f"mu* {n} = T_w / (r_i W) = {float(t_w) / (r_i[n] * loads[n]):.3f}" for n in ("DE", "NDE")))
+        t_w = worn_drag(raw)[0] if t is None else t
+        print(f"T_w = {t_w:.3g} N m; static loads DE {loads['DE']:.0f} N, NDE {loads['NDE']:.0f} N; "
+              + ", ".join(f"mu* {n} = T_w / (r_i W) = {t_w / (r_i[n] * loads[n]):.3f}" for n in ("DE", "NDE")))
         for where in a.where.split(","):
             for mu in a.mu.split(","):
-                tag = f"{where}_T{float(t_w):.3g}_mu{mu}"
+                tag = f"{where}_T{t_w:.3g}_mu{mu}"
                 f = out / f"{tag}.json"
                 if f.is_file():
                     members = json.loads(f.read_text())["members"]
