@@ -270,7 +270,8 @@ def provenance() -> dict:
     from .config import load_toml
 
     cal = project_root() / "scenarios" / "calibration"
-    out = {row[0]: "predicted" for row in TABLE_ROWS} | {"switch_calm": "predicted"}
+    out = {row[0]: "predicted" for row in TABLE_ROWS} | {"switch_calm": "predicted"} | {
+        f"fw_de_{int(r)}": "predicted" for r in paper()["fig39"]["speed_rpm"]}
     for name in ADOPTED:
         f = cal / name
         if not f.is_file():
@@ -283,6 +284,8 @@ def provenance() -> dict:
         for case in data.get("cases", []):  # a fit by landing (calibrate): forward cases fwNNNN
             if case.startswith("fw"):
                 out[f"fig39_{int(case[2:])}"] = label
+                if data.get("ensemble", 1) > 1:  # calibrate.score then scores the DE's forward share too
+                    out[f"fw_de_{int(case[2:])}"] = label
                 if case == "fw7000" and data.get("score_force", True):
                     out["t2_force_max"] = label
         if "bw" in data.get("cases", []):  # calibrate.score's backward case: frequency and onset
@@ -371,7 +374,8 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
                 "no whirl at any bearing")["provenance"] = prov["switch_calm"]
     for rpm in paper()["fig39"]["speed_rpm"]:
         classes(f"forward_{rpm}", "forward", f"combined landing {rpm} rpm whirls forward at the DE",
-                "the DE journal whirls forward (the paper measured the DE)", where="DE")
+                "the DE journal whirls forward (the paper measured the DE)", where="DE")["provenance"] = \
+            prov[f"fw_de_{int(rpm)}"]
     freqs = [_value(_judged(s, ensembles, f"forward_{r}")[0], "fig39", r)[0] for r in paper()["fig39"]["speed_rpm"]]
     check("cause", "forward whirl frequency rises with speed (DE)", "f(3000) < f(7000) < f(10000)",
           all(f is not None for f in freqs) and freqs[0] < freqs[1] < freqs[2], ours=freqs)
