@@ -66,9 +66,6 @@ def _peak_and_range(spec, t, q, v):
             s["energy"]["balance_error_relative"])
 
 
-@pytest.mark.xfail(strict=True, reason="session 15 rig rotor (heavier DE end, 15 modes): the auto step's vertical "
-                   "displacement range is 0.323 mm against 0.276-0.280 mm at fixed 5e-5 to 1.25e-5 s (+17 %; +9 % at "
-                   "tolerance 2e-8); the auto step is not the default (issue 21, docs/calibration.md session 15)")
 def test_auto_step_moves_the_step_and_agrees_with_a_finer_fixed_step():
     """The radial landing's first impacts (0.1 s): the controller must change the step (rejecting
     some), keep the output grid of the fixed step, and give the peak contact force within 5 % and
