@@ -71,6 +71,9 @@ def load_space(path) -> dict:
         if not (isinstance(cases, list) and cases and all(c in CASES for c in cases)):
             raise InputError("cases", cases, f"must be a non-empty list of {', '.join(CASES)}")
         ensemble = t.integer("ensemble", 1)
+        score_force = t.raw("score_force", True)
+        if not isinstance(score_force, bool):
+            raise InputError("score_force", score_force, "true or false (score Table 2's force maximum)")
         fixed = override_table(t.raw("fixed", {}), "fixed")
         ranges = t.raw("ranges")
         if not isinstance(ranges, dict) or not ranges:
@@ -85,7 +88,7 @@ def load_space(path) -> dict:
         t.finish()
         _check_ranges(fixed, ranges, cases)
     return {"designs": sample_ranges(ranges, n, seed), "t_end": t_end, "verify_top": verify_top,
-            "fixed": dict(fixed), "cases": cases, "ensemble": ensemble}
+            "fixed": dict(fixed), "cases": cases, "ensemble": ensemble, "score_force": score_force}
 
 
 def _check_ranges(fixed: dict, ranges: dict, cases: list[str]) -> None:
@@ -132,7 +135,7 @@ def _run(job):
         return i, case, {"direction": "failed", "error": str(exc), "ok": False}
 
 
-def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
+def score(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> tuple[float, dict]:
     """Sum of relative errors vs the experiments over ``cases``; 1 per wrong whirl class.
 
     A forward case run as an ensemble is judged at the DE journal, as ``validate`` judges it (the
@@ -142,7 +145,8 @@ def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
     The backward case also scores persistence: the paper's whirl (Figs. 20-24) lasts from its onset
     to the end of the record, so ``1 - persistence`` (share of the time after onset not whirling)
     is added as ``bw_persist``. ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
-    the share of its drops that whirl, as ``bw015_whirls``."""
+    the share of its drops that whirl, as ``bw015_whirls``. ``force = False`` leaves Table 2's force
+    maximum out of the score (``score_force`` in the space file), so that it stays a prediction."""
     parts = {}
     for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[paper()["fig39"][k] for k in
                                                                     ("speed_rpm", "experimental_hz")]):
@@ -157,7 +161,7 @@ def score(res: dict, cases=tuple(DEFAULT_CASES)) -> tuple[float, dict]:
         else:
             parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
     r = res.get("fw7000", {})
-    if "fw7000" in cases and r.get("force_max_n"):
+    if force and "fw7000" in cases and r.get("force_max_n"):
         parts["force"] = min(1.0, abs(r["force_max_n"] / paper()["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
     b = res.get("bw", {})
     t1 = paper()["table1"]["experimental"]
@@ -243,7 +247,7 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     results = _run_all(_jobs(dict(enumerate(sp["designs"])), sp, 1.0), workers)
     rows = []
     for i, d in enumerate(sp["designs"]):
-        total, parts = score(results[i], cases)
+        total, parts = score(results[i], cases, force=sp["score_force"])
         rows.append({"design": i, "score": total, "converged": None, "score_half_step": None,
                      "failed_landings": sum(results[i][c].get("failed", 0) for c in cases), **d,
                      **{f"err_{k}": v for k, v in parts.items()},
@@ -261,7 +265,7 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
         half = _run_all(_jobs({r["design"]: sp["designs"][r["design"]] for r in top}, sp, 0.5), workers)
         for r in top:
             r["converged"] = converged(results[r["design"]], half[r["design"]])
-            r["score_half_step"] = score(half[r["design"]], cases)[0]
+            r["score_half_step"] = score(half[r["design"]], cases, force=sp["score_force"])[0]
             r.update({f"{c}_hz_half_step": half[r["design"]][c].get("frequency_hz") for c in cases})
             if "bw" in cases:
                 r["bw_onset_s_half_step"] = half[r["design"]]["bw"].get("onset_s")

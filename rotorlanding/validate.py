@@ -108,10 +108,21 @@ def holdout_dir() -> Path:
 
 
 def _holdout_sets(rpm: int) -> list[str] | None:
-    """``--set`` overrides of the rotor fitted without the ``rpm`` whirl frequency
-    (``scenarios/calibration/holdout/without_<rpm>rpm/modefit.json``, written by ``fit-modes``);
-    None when that fit has not been run."""
-    f = holdout_dir() / f"without_{rpm}rpm" / "modefit.json"
+    """``--set`` overrides of the rotor fitted without the ``rpm`` landing: the best design of
+    ``scenarios/calibration/holdout/without_<rpm>rpm/calibration.json`` (written by ``calibrate`` on
+    ``without_<rpm>rpm_landings.toml``, the rotor fitted by landings since session 15), else the
+    values of ``modefit.json`` there (written by ``fit-modes``); None when neither fit has been run."""
+    d = holdout_dir() / f"without_{rpm}rpm"
+    cal, space = d / "calibration.json", holdout_dir() / f"without_{rpm}rpm_landings.toml"
+    if cal.is_file() and space.is_file():
+        from .config import load_toml
+
+        best = json.loads(cal.read_text())["designs"][0]
+        sets = []
+        for tied in load_toml(space).get("ranges", {}):
+            sets += [f"{k.strip()}={best[tied]!r}" for k in tied.split(",")]
+        return sets
+    f = d / "modefit.json"
     if not f.is_file():
         return None
     return [f"{k}={v!r}" for k, v in json.loads(f.read_text())["values"].items()]
@@ -247,7 +258,7 @@ def _value(w: dict, table: str, key) -> tuple[float | None, float | None]:
 
 #: the calibration files whose results are in the paper scenarios (scenarios/calibration/): the
 #: rotor's modal fit and the worn-bearing calibration of the backward landing
-ADOPTED = ("rotor_modes.toml", "worn_bearing.toml")
+ADOPTED = ("rotor_landings.toml", "worn_bearing.toml")
 
 
 def provenance() -> dict:
@@ -259,7 +270,8 @@ def provenance() -> dict:
     from .config import load_toml
 
     cal = project_root() / "scenarios" / "calibration"
-    out = {row[0]: "predicted" for row in TABLE_ROWS} | {"switch_calm": "predicted"}
+    out = {row[0]: "predicted" for row in TABLE_ROWS} | {"switch_calm": "predicted"} | {
+        f"fw_de_{int(r)}": "predicted" for r in paper()["fig39"]["speed_rpm"]}
     for name in ADOPTED:
         f = cal / name
         if not f.is_file():
@@ -269,6 +281,13 @@ def provenance() -> dict:
         label = f"fitted (scenarios/calibration/{name}: {n} unknown{'s' if n != 1 else ''})"
         for rpm in data.get("targets", {}).get("speeds_rpm", []):  # a modal fit (fit-modes)
             out[f"fig39_{int(rpm)}"] = label
+        for case in data.get("cases", []):  # a fit by landing (calibrate): forward cases fwNNNN
+            if case.startswith("fw"):
+                out[f"fig39_{int(case[2:])}"] = label
+                if data.get("ensemble", 1) > 1:  # calibrate.score then scores the DE's forward share too
+                    out[f"fw_de_{int(case[2:])}"] = label
+                if case == "fw7000" and data.get("score_force", True):
+                    out["t2_force_max"] = label
         if "bw" in data.get("cases", []):  # calibrate.score's backward case: frequency and onset
             out["t1_frequency"] = out["t1_onset"] = label
         if "bw015" in data.get("cases", []):
@@ -355,7 +374,8 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
                 "no whirl at any bearing")["provenance"] = prov["switch_calm"]
     for rpm in paper()["fig39"]["speed_rpm"]:
         classes(f"forward_{rpm}", "forward", f"combined landing {rpm} rpm whirls forward at the DE",
-                "the DE journal whirls forward (the paper measured the DE)", where="DE")
+                "the DE journal whirls forward (the paper measured the DE)", where="DE")["provenance"] = \
+            prov[f"fw_de_{int(rpm)}"]
     freqs = [_value(_judged(s, ensembles, f"forward_{r}")[0], "fig39", r)[0] for r in paper()["fig39"]["speed_rpm"]]
     check("cause", "forward whirl frequency rises with speed (DE)", "f(3000) < f(7000) < f(10000)",
           all(f is not None for f in freqs) and freqs[0] < freqs[1] < freqs[2], ours=freqs)
@@ -655,9 +675,9 @@ def report_markdown(result: dict) -> str:
     held = [c for c in ev["checks"] if c["group"] == "held-out"]
     lines += ["", "## Held-out speeds: the rotor fitted on two speeds predicts the third", ""]
     if held:
-        lines += ["The rig rotor's free values (`scenarios/calibration/rotor_modes.toml` ranges) fitted again (`rotorlanding fit-modes "
-                  "scenarios/calibration/holdout/without_<rpm>rpm.toml`) with one Fig. 39 frequency left out; the "
-                  "combined landing at the left-out speed is then run on that rotor (8 drops).", "",
+        lines += ["The rig rotor's free values (the ranges of `scenarios/calibration/rotor_landings.toml`) fitted again by landing "
+                  "(`rotorlanding calibrate scenarios/calibration/holdout/without_<rpm>rpm_landings.toml`) with the "
+                  "combined landing at one Fig. 39 speed left out; that landing is then run on the fitted rotor (8 drops).", "",
                   "| check | rule | ours | margin [Hz] (s.e.) | verdict |", "|---|---|---|---|---|"]
         for c in held:
             se = "" if c["se"] is None else f" ({c['se']:.2g})"

@@ -759,7 +759,7 @@ def test_every_shipped_input_still_loads():
         else:
             kinds["other"] += 1
     assert kinds == {"scenario": 7, "coastdown": 2, "rotor": 2, "fit-modes space": 4, "sweep": 1,
-                     "calibration space": 5, "paper numbers": 1, "measured feature table": 2, "rig overlay": 1,
+                     "calibration space": 9, "paper numbers": 1, "measured feature table": 2, "rig overlay": 1,
                      "whirl map": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():

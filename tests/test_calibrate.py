@@ -47,6 +47,10 @@ def test_tied_keys_expand_and_step_convergence_rule():
     assert not converged(a, dict(a, bw={"direction": "none", "frequency_hz": None}))
     assert not converged(a, dict(a, fw10000={"direction": "forward", "frequency_hz": 80.0}))
     assert not converged(a, dict(a, fw7000={"direction": "forward", "frequency_hz": 65.0, "force_max_n": 5000.0}))
+    # score_force = false (the rotor fitted by landing): Table 2's force maximum is left out
+    b = dict(a, fw7000={"direction": "forward", "frequency_hz": 65.0, "force_max_n": 9000.0})
+    assert score(b, ["fw7000"])[1]["force"] == pytest.approx(0.5)
+    assert "force" not in score(b, ["fw7000"], force=False)[1] and score(b, ["fw7000"], force=False)[0] == 0.0
 
 
 def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
@@ -74,6 +78,10 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     assert main(["calibrate", str(bad)]) == 2
     err = capsys.readouterr().err
     assert "choices.the worn bearing" in err and len(err.strip().splitlines()) == 1
+    bad.write_text('score_force = "no"\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.2}\n')
+    assert main(["calibrate", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "score_force" in err and len(err.strip().splitlines()) == 1
 
 
 def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
@@ -161,3 +169,18 @@ def test_forward_ensembles_are_judged_at_the_de_journal():
     assert parts == {"fw3000": pytest.approx(0.1), "fw3000_de": pytest.approx(0.25)}
     calm_de = dict(ens, de={"counts": {"none": 5, "forward": 3}, "direction": "none", "frequency_hz": None})
     assert score({"fw3000": calm_de}, ["fw3000"])[1] == {"fw3000": 1.0, "fw3000_de": pytest.approx(0.625)}
+
+
+@pytest.mark.slow
+def test_rig_landing_fit_reruns_and_reproduces_the_rotor_file(tmp_path):
+    """The rig rotor's main shaft and actuator disk are the best design of
+    scenarios/calibration/rotor_landings.toml (session 15): re-running it gives the rotor file's
+    values (576 landings, ~5 min on 2 cores)."""
+    from rotorlanding.calibrate import calibrate
+    from rotorlanding.config import load_toml
+
+    root = Path(__file__).resolve().parents[1]
+    rows = calibrate(root / "scenarios" / "calibration" / "rotor_landings.toml", tmp_path, workers=2)
+    rotor = load_toml(root / "scenarios" / "rig_rotor.toml")["rotor"]
+    assert rows[0]["rotor.sections.3.outer_diameter"] == rotor["sections"][3]["outer_diameter"]
+    assert rows[0]["rotor.disks.4.outer_diameter"] == rotor["disks"][4]["outer_diameter"]

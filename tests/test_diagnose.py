@@ -171,6 +171,10 @@ def _whirl_fixed(rep):
     return [p["name"] for p in rep["points"] if p["whirl_before"] != p["whirl_measured"] == p["whirl_after"]]
 
 
+@pytest.mark.xfail(strict=True, reason="session 15 rig rotor (heavier DE end): axial rub (mu_ax 0.5) brings back the forward "
+                   "whirl at both speeds but takes the gap only from 2.62 to 2.16 (examples/diagnose_measured.py "
+                   "--short): Table 2's DE force and displacement stay at the distance cap with it (10 kN against "
+                   "4.5 kN), so its score does not pay for mu_ax and nothing is named (issues 15 and 20)")
 def test_paper_story_short_two_speeds(tmp_path, capsys):
     """The paper's story, short: the forward-whirl combined landing without axial rub (and without
     windage, the competing candidate) vs the paper's experimental features at 7000 and 10000 rpm

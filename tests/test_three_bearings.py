@@ -18,7 +18,7 @@ MID = """
 boundary_stations = ["NDE_sleeve", "speed_sensor", "DE_sleeve"]
 [bearings.MID]
 station = "speed_sensor"
-clearance = 4.0e-4
+clearance = 2.0e-4                 # as the DE and NDE bearings: the session-15 rotor's mid-span drops 0.27 mm in 0.05 s (0.4 mm was never reached)
 sleeve_radius = 0.0298
 inner_race_mass = 0.28
 inner_race_inertia = 3.2e-4
