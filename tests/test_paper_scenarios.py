@@ -189,6 +189,26 @@ def test_band_rule_margins_and_provenance():
     assert prov["t2_force_max"] == "predicted"
 
 
+def test_heldout_verdict_is_flagged_when_its_share_of_drops_hangs_on_noise():
+    """A held-out speed has two margins, the frequency's and the share of drops': 7 of 8 forward at
+    the right frequency passes with no margin in drops (s.e. 0.94), so it is flagged within noise;
+    16 of 16 is not; 6 of 8 fails."""
+    from rotorlanding.validate import CASES, evaluate_cases
+
+    s = {k: None for k in CASES}
+
+    def held(members):
+        ev = evaluate_cases(s, _paper_ensembles(heldout_10000=members))
+        return next(c for c in ev["checks"] if c["group"] == "held-out")
+
+    c = held([_member("forward", 77.0, 0.1)] * 7 + [_member("backward", 60.0, 0.1)])
+    assert c["pass"] and c["class_margin"] == 0 and c["within_noise"] and c["margin"] > c["se"]
+    c = held([_member("forward", 77.0 + 0.1 * k, 0.1) for k in range(16)])
+    assert c["pass"] and c["class_margin"] == 2 and not c["within_noise"]
+    c = held([_member("forward", 77.0, 0.1)] * 6 + [_member("backward", 60.0, 0.1)] * 2)
+    assert not c["pass"] and c["class_margin"] == -1
+
+
 def test_class_verdict_counts_drops_with_a_binomial_error():
     from rotorlanding.validate import _class_verdict
 
