@@ -64,7 +64,8 @@ def ensemble_stats(members: list[dict]) -> dict:
     rule for a median), the sampling noise against which a step-size change is judged;
     ``onset_se_s`` the same for the onsets, and ``onset_range_s`` their [min, max] (a developing
     worn drag makes the onset a random variable of the drop: docs/calibration.md, session 7).
-    ``v_disp_range_se_m`` / ``v_force_range_se_n``: standard errors of the median peaks.
+    ``v_disp_range_se_m`` / ``v_force_range_se_n``: standard errors of the median peaks;
+    ``race_to_rotor_se`` that of the median speed ratio.
     ``de``: the DE journal's own whirl over all members (members with ``de_direction``): its class
     counts, majority class and median frequency with its standard error; the paper measured its
     whirl frequencies there, while the landing's whirl may be another bearing's.
@@ -100,6 +101,8 @@ def ensemble_stats(members: list[dict]) -> dict:
     ratios = [m["race_to_rotor"] for m in members if m.get("race_to_rotor") is not None]
     if ratios:
         out["race_to_rotor"] = median(ratios)
+        if len(ratios) >= 2:
+            out["race_to_rotor_se"] = _median_se(ratios)
     for key, unit in (("v_disp_range_m", "_m"), ("v_force_range_n", "_n")):
         vals = [m[key] for m in members if m.get(key) is not None]
         if vals:

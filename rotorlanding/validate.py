@@ -370,7 +370,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
     ratio = w.get("race_to_rotor")
     check("cause", "no-whirl: inner race reaches rotor speed", "median DE race / rotor speed at the end >= 0.97",
           ratio is not None and ratio >= 0.97, ours=None if ratio is None else round(ratio, 4),
-          margin=None if ratio is None else ratio - 0.97)
+          margin=None if ratio is None else ratio - 0.97, se=w.get("race_to_rotor_se"))
     classes("backward_whirl", "backward", "mu_rad switch: mu_rad 0.3 whirls backward",
             "backward whirl")["provenance"] = prov["t1_frequency"]
     if "backward_mu_0.15" in s or "backward_mu_0.15" in ensembles:
@@ -380,9 +380,16 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
         classes(f"forward_{rpm}", "forward", f"combined landing {rpm} rpm whirls forward at the DE",
                 "the DE journal whirls forward (the paper measured the DE)", where="DE")["provenance"] = \
             prov[f"fw_de_{int(rpm)}"]
-    freqs = [_value(_judged(s, ensembles, f"forward_{r}")[0], "fig39", r)[0] for r in paper()["fig39"]["speed_rpm"]]
+    fse = [_value(_judged(s, ensembles, f"forward_{r}")[0], "fig39", r) for r in paper()["fig39"]["speed_rpm"]]
+    freqs = [f for f, _ in fse]
+    rise_margin = rise_se = None
+    if all(f is not None for f in freqs):
+        # the margin is the smaller of the two steps; its error that of a difference of two medians
+        steps = [(freqs[i + 1] - freqs[i], math.hypot(fse[i][1] or 0.0, fse[i + 1][1] or 0.0)) for i in (0, 1)]
+        rise_margin, rise_se = min(steps)
     check("cause", "forward whirl frequency rises with speed (DE)", "f(3000) < f(7000) < f(10000)",
-          all(f is not None for f in freqs) and freqs[0] < freqs[1] < freqs[2], ours=freqs)
+          all(f is not None for f in freqs) and freqs[0] < freqs[1] < freqs[2], ours=freqs,
+          margin=rise_margin, se=rise_se, margin_unit="Hz")
     classes("forward_7000_no_axial_rub", {"none", "backward"}, "axial rub causes the forward whirl",
             "axial_rub = false: no forward whirl")
     rib = _ribbon_effect(s, ensembles)

@@ -157,6 +157,11 @@ def test_validation_judges_the_ensemble_and_the_paper_measuring_node():
     assert not bad["forward whirl frequency rises with speed (DE)"]["pass"]
     assert not bad["no-whirl: inner race reaches rotor speed"]["pass"] and bad["no-whirl: inner race reaches rotor speed"]["ours"] == 0.9
     assert bad["combined landing 7000 rpm whirls forward at the DE"]["pass"]
+    # every statistical verdict carries its margin and the margin's standard error
+    rise = ok["forward whirl frequency rises with speed (DE)"]
+    assert rise["margin"] == pytest.approx(77.0 - 65.35) and rise["se"] > 0  # the smaller step; 7000 rpm: median of 65.0..65.7
+    race = ok["no-whirl: inner race reaches rotor speed"]
+    assert race["margin"] is not None and race["se"] is not None
 
 
 def test_band_rule_margins_and_provenance():
