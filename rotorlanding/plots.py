@@ -3,6 +3,7 @@ speeds, full spectrum, energy."""
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +11,12 @@ import numpy as np
 from .mechanisms import rotor_force
 from .postprocess import uniform
 from .whirl import full_spectrum
+
+
+def _wrap(text: str, width: int = 90) -> str:
+    """A figure title on as many lines as it needs: a 9-inch figure shows about 90 characters
+    of the default title font, and a scenario's name plus the plot's own title ran past its edge."""
+    return textwrap.fill(text, width)
 
 
 def _plt():
@@ -56,7 +63,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
             ax.legend(loc="upper right", fontsize=8)
             ax.grid(alpha=0.3)
         axes[-1, 0].set_xlabel("time [s]")
-        fig.suptitle(f"{title}: {suptitle}")
+        fig.suptitle(_wrap(f"{title}: {suptitle}"))
         save(fig, fname)
 
     if want("displacements"):
@@ -111,7 +118,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
         ax.set_ylabel("speed [rpm]")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
-        ax.set_title(f"{title}: rotor and inner-race speeds")
+        ax.set_title(_wrap(f"{title}: rotor and inner-race speeds"))
         save(fig, "speeds.png")
 
     if want("spectrum"):
@@ -129,7 +136,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
             ax.grid(alpha=0.3)
             ax.legend(fontsize=8)
         axes[-1, 0].set_xlabel("full-spectrum frequency [Hz] (negative = backward whirl)")
-        fig.suptitle(f"{title}: full spectrum of y + i z after the drop")
+        fig.suptitle(_wrap(f"{title}: full spectrum of y + i z after the drop"))
         save(fig, "spectrum.png")
 
     if want("energy"):
@@ -142,6 +149,6 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
         ax.set_yscale("symlog", linthresh=1e-2)
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
-        ax.set_title(f"{title}: energy lost per mechanism")
+        ax.set_title(_wrap(f"{title}: energy lost per mechanism"))
         save(fig, "energy.png")
     return files
