@@ -95,6 +95,11 @@ def _onset_note() -> str:
             "reproduces the paper's one landing rather than predicting it (docs/calibration.md, session 8).")
 
 
+#: the cases whose ensemble members the landing figure reads back (its representative drops); the
+#: other members keep only summary.json (a validate run wrote ~1.5 GB of results.h5 before)
+FIGURE_CASES = ("no_whirl", "backward_whirl", "forward_7000")
+
+
 def _run_case(args):
     key, fname, sets, out_dir, t_end, rig, plots = args
     from .run import run_scenario
@@ -102,7 +107,9 @@ def _run_case(args):
 
     overrides = list(sets) + ([f"operating.t_end={t_end}"] if t_end else [])
     sc = load_scenario(paper_dir() / fname, overrides, overlays=[rig] if rig else ())
-    summary = run_scenario(sc, Path(out_dir) / key, progress=False, plots=plots)
+    member_of = key.rsplit("_drop", 1)[0] if Path(out_dir).name == "ensembles" else None
+    summary = run_scenario(sc, Path(out_dir) / key, progress=False, plots=plots,
+                           results=member_of is None or member_of in FIGURE_CASES)
     return key, summary
 
 
@@ -838,7 +845,7 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     # DE vertical and horizontal displacement of the three landings, with zooms: the representative
     # drop of each ensemble, with the radial clearance drawn
     f, axes = plt.subplots(3, 2, figsize=(12, 9), gridspec_kw={"width_ratios": [3, 1]})
-    for row, key in enumerate(("no_whirl", "backward_whirl", "forward_7000")):
+    for row, key in enumerate(FIGURE_CASES):
         path, label = out / key / "results.h5", f"{key} (centred drop)"
         ens = result.get("ensembles", {}).get(key)
         if ens:

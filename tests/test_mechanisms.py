@@ -117,3 +117,30 @@ def test_results_file_carries_the_schema_units(tmp_path):
     with h5py.File(tmp_path / "results.h5") as h5:
         stored = {k: h5["series"][k].attrs["unit"] for k in h5["series"]}
     assert stored == units
+
+
+def test_results_false_writes_the_same_summary_and_no_results_file(tmp_path):
+    """An ensemble member that nothing reads back (validate's members outside its figure, study
+    drops) keeps summary.json only: the summary is the one a full run writes, and an earlier run's
+    results.h5 in the folder does not survive to pass as this run's."""
+    import json
+
+    from rotorlanding.run import run_scenario
+    from rotorlanding.validate import FIGURE_CASES, _run_case
+
+    sc = load_scenario(ROOT / "scenarios" / "paper" / "no_whirl_landing.toml", ["operating.t_end=0.01"])
+    full = run_scenario(sc, tmp_path / "full", progress=False, plots=False)
+    (tmp_path / "lean").mkdir()
+    (tmp_path / "lean" / "results.h5").write_bytes(b"stale")
+    lean = run_scenario(sc, tmp_path / "lean", progress=False, plots=False, results=False)
+    assert (tmp_path / "full" / "results.h5").is_file() and not (tmp_path / "lean" / "results.h5").exists()
+    strip = lambda s: {k: v for k, v in s.items() if k != "performance"}  # noqa: E731 (wall times differ)
+    assert strip(lean) == strip(full)
+    assert strip(json.loads((tmp_path / "lean" / "summary.json").read_text())) == strip(full)
+    # validate: a member of a figure case keeps its results.h5, any other member does not
+    ens = tmp_path / "ensembles"
+    for key in (f"{FIGURE_CASES[0]}_drop0", "heldout_3000_drop3"):
+        _run_case((key, "no_whirl_landing.toml", [], str(ens), 0.01, None, False))
+    assert (ens / f"{FIGURE_CASES[0]}_drop0" / "results.h5").is_file()
+    assert not (ens / "heldout_3000_drop3" / "results.h5").exists()
+    assert (ens / "heldout_3000_drop3" / "summary.json").is_file()

@@ -26,9 +26,8 @@ def run_drop(job: tuple) -> dict:
 
     scenario, sets, rig, out, keep_h5 = (*job, False)[:5]
     sc = load_scenario(scenario, sets, overlays=[rig] if rig else ())
-    s = run_scenario(sc, Path(out), progress=False, plots=False)
-    if not keep_h5:  # ~8 MB per 1.2 s drop: a 1000-drop study would fill a disk (session 14 did)
-        (Path(out) / "results.h5").unlink(missing_ok=True)
+    # ~8 MB of results.h5 per 1.2 s drop: a 1000-drop study would fill a disk (session 14 did)
+    s = run_scenario(sc, Path(out), progress=False, plots=False, results=keep_h5)
     return {**member_result(s), "wall_s": s.get("performance", {}).get("wall_s"),
             "nde_direction": (s["whirl"].get("per_bearing") or {}).get("NDE", {}).get("direction")}
 
