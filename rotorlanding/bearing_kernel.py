@@ -47,6 +47,8 @@ from user_forces.ribbon import ribbon_force as _ribbon_force_py
 from user_forces.spin import drive_torque as _drive_py
 from user_forces.spin import windage_torque as _windage_py
 from user_forces.spin import windage_torque_derivative as _windage_d_py
+from user_forces.contact_stress import line_contact_fast as _line_contact_py
+from user_forces.thermal import blok_partition_fast as _blok_py
 
 from .landing import G_ACC, BearingSpec, LandingSpec
 from .params import OMEGA_REG_HP
@@ -58,6 +60,7 @@ _njit = numba.njit(cache=True, fastmath=False)
     _radial_contact_py, _axial_force_py, _axial_rub_q_py, _worn_drag_py, _worn_dev_py, _worn_fr_law_py,
     _ball_force_py, _hp_law_py, _ribbon_force_py, _outer_race_friction_py, _windage_py, _windage_d_py, _drive_py,
     _amb_py))
+_line_contact, _blok = _njit(_line_contact_py), _njit(_blok_py)
 
 # parameter vector layout
 (P_CL, P_RR, P_RI, P_KH, P_EX, P_KV, P_MU, P_VREG, P_KB1, P_KB2, P_CB, P_DRAG, P_XS, P_YS, P_INVCS, P_ZDM,
@@ -728,3 +731,67 @@ def rub_series(dy, dz, dvy, dvz, om, wi, q, ta, tb, n_lat, n_ax, x, cl_ax, mu_ax
             r = _axial_rub_q(dy[i], dz[i], dvy[i], dvz[i], om[i], wi[i], np.dot(ta, ql), np.dot(tb, ql),
                              abs(x[i]) - cl_ax, n_ax[i], 1.0 if x[i] >= 0 else -1.0, mu_ax, v_reg, r1, r2, False)
             gy[i], gz[i], p[i] = r[0], r[1], r[4]
+
+
+# --- post-processing series: the laws over every output sample, compiled as in the solver -------
+# (mechanisms' post hooks; the plain per-sample Python loops took about 0.2 s of a 1 s landing's
+# 0.3 s of post-processing; tests/test_post_series.py checks each against the plain loop)
+
+@_njit
+def radial_series(dy, dz, dvy, dvz, om, wi, cl, kh, ex, kv, mu, vreg, rr, ri, out):
+    """Radial contact (eqs 10-17) per sample into ``out`` (n x 8): F_y, F_z, F_N, delta, v_s on the
+    rotor, friction power, Hunt-Crossley damping power, Hertz energy."""
+    for i in range(dy.shape[0]):
+        r = _radial_contact(dy[i], dz[i], dvy[i], dvz[i], om[i], wi[i], cl, kh, ex, kv, mu, vreg, rr, ri)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 4], out[i, 5] = r[0], r[1], r[4], r[6], r[7]
+        delta = r[5]
+        if delta > 0:
+            out[i, 3] = delta
+            ddot = (dy[i] * dvy[i] + dz[i] * dvz[i]) / math.hypot(dy[i], dz[i])
+            out[i, 6] = (r[4] - kh * delta ** ex) * ddot
+            out[i, 7] = kh * delta ** (ex + 1) / (ex + 1)
+
+
+@_njit
+def ball_series(ey, ez, evy, evz, kb1, kb2, cb, out):
+    """Ball set (eq 22) per sample into ``out`` (n x 3): force on the inner race y, z, elastic energy."""
+    for i in range(ey.shape[0]):
+        f = _ball_force(ey[i], ez[i], kb1, kb2, evy[i], evz[i], cb)
+        out[i, 0], out[i, 1] = f[0], f[1]
+        rr = math.hypot(ey[i], ez[i])
+        out[i, 2] = kb1 * rr * rr / 2 + kb2 * rr ** 3 / 3
+
+
+@_njit
+def drag_series(wi, by, bz, n_ax, preload, hp, out):
+    """Harris-Palmgren drag torque (eqs 23-27) per sample into ``out``: radial load = ball force,
+    axial = face load + preload; ``hp`` the law's constants tuple."""
+    for i in range(wi.shape[0]):
+        out[i] = _hp_law(wi[i], math.hypot(by[i], bz[i]), n_ax[i] + preload, hp)[0]
+
+
+@_njit
+def ribbon_series(oy, oz, ovy, ovz, krib, crib, eta, vreg, out):
+    """Ribbon (eqs 28-29) per sample into ``out`` (n x 4): force on the outer race y, z, elastic
+    energy, cross-coupled (hysteretic) power."""
+    for i in range(oy.shape[0]):
+        f = _ribbon_force(oy[i], oz[i], ovy[i], ovz[i], krib, crib, eta, vreg)
+        out[i, 0], out[i, 1] = f[0], f[1]
+        out[i, 2] = 0.5 * krib * (oy[i] * oy[i] + oz[i] * oz[i])
+        ccy, ccz = f[0] + crib * ovy[i] + krib * oy[i], f[1] + crib * ovz[i] + krib * oz[i]
+        out[i, 3] = -(ccy * ovy[i] + ccz * ovz[i])
+
+
+@_njit
+def blok_sleeve_series(fn, om, wi, r_sleeve, r_race, r_equiv, width, e_star, k, chi, out):
+    """Blok's sleeve share of the sleeve-bore contact heat per sample (0.5 where there is no contact)."""
+    for i in range(fn.shape[0]):
+        b = _line_contact(fn[i], width, r_equiv, e_star)[1] if fn[i] > 0.0 else 0.0
+        out[i] = _blok(om[i] * r_sleeve, wi[i] * r_race, b, k, chi, k, chi) if b > 0.0 else 0.5
+
+
+@_njit
+def blok_face_series(om, wi, r_m, half, k, chi, out):
+    """Blok's sleeve share of the face-rub heat per sample (mean face radius, half the annulus width)."""
+    for i in range(om.shape[0]):
+        out[i] = _blok(abs(om[i]) * r_m, abs(wi[i]) * r_m, half, k, chi, k, chi)

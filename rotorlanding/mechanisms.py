@@ -250,29 +250,20 @@ def _kinematics(ev: Evaluation, b) -> dict:
 
 
 def _post_radial(ev: Evaluation, L) -> None:
-    """Radial contact, eqs 10-17: forces, Hertz energy, friction and Hunt-Crossley powers."""
+    """Radial contact, eqs 10-17: forces, Hertz energy, friction and Hunt-Crossley powers (the
+    user_forces law over every sample, compiled: ``bearing_kernel.radial_series``)."""
+    from .bearing_kernel import radial_series
+
     k = ev.kin
-    nt = len(ev.t)
-    cols = [np.zeros(nt) for _ in range(5)]
-    pf_, pd_, ep_ = np.zeros(nt), np.zeros(nt), np.zeros(nt)
-    for i in range(nt):
-        dy, dz, dvy, dvz = k["dy"][i], k["dz"][i], k["dvy"][i], k["dvz"][i]
-        fy, fz, _, _, fn, delta, vs, pf = radial_contact(dy, dz, dvy, dvz, k["omega"][i], k["wi"][i], L.clearance,
-                                                         L.k_hertz, L.exponent, L.k_visc, L.mu_rad, L.v_reg,
-                                                         L.sleeve_radius, L.race_radius)
-        cols[0][i], cols[1][i], cols[2][i], cols[4][i] = fy, fz, fn, vs
-        if delta > 0:
-            cols[3][i] = delta
-            dist = math.hypot(dy, dz)
-            ddot = (dy * dvy + dz * dvz) / dist
-            pd_[i] = (fn - L.k_hertz * delta**L.exponent) * ddot
-            ep_[i] = L.k_hertz * delta ** (L.exponent + 1) / (L.exponent + 1)
-        pf_[i] = pf
-    for o, c in zip(RADIAL_CONTACT.outputs, cols):
-        ev.out(o.name, c)
-    ev.dissipated("contact_damping", pd_)
-    ev.epot += ep_
-    ev.dissipated("radial_friction", pf_)
+    out = np.zeros((len(ev.t), 8))
+    radial_series(*(np.asarray(k[key], dtype=float) for key in ("dy", "dz", "dvy", "dvz", "omega", "wi")),
+                  float(L.clearance), float(L.k_hertz), float(L.exponent), float(L.k_visc), float(L.mu_rad),
+                  float(L.v_reg), float(L.sleeve_radius), float(L.race_radius), out)
+    for o, c in zip(RADIAL_CONTACT.outputs, out.T[:5]):
+        ev.out(o.name, np.ascontiguousarray(c))
+    ev.dissipated("contact_damping", out[:, 6].copy())
+    ev.epot += out[:, 7]
+    ev.dissipated("radial_friction", out[:, 5].copy())
 
 
 def _post_rub(ev: Evaluation, L) -> None:
@@ -295,27 +286,30 @@ def _post_rub(ev: Evaluation, L) -> None:
 
 
 def _post_balls(ev: Evaluation, L) -> None:
-    """Ball set, eq 22: force on the inner race, its elastic energy and damping."""
+    """Ball set, eq 22: force on the inner race, its elastic energy and damping (compiled:
+    ``bearing_kernel.ball_series``)."""
+    from .bearing_kernel import ball_series
+
     k = ev.kin
-    nt = len(ev.t)
-    by, bz, ep = np.zeros(nt), np.zeros(nt), np.zeros(nt)
-    for i in range(nt):
-        ey, ez = k["ey"][i], k["ez"][i]
-        by[i], bz[i] = ball_force(ey, ez, L.k_b1, L.k_b2, k["evy"][i], k["evz"][i], L.c_b)
-        rr = math.hypot(ey, ez)
-        ep[i] = L.k_b1 * rr * rr / 2 + L.k_b2 * rr**3 / 3
-    ev.out("ball_force_y_n", by)
-    ev.out("ball_force_z_n", bz)
-    ev.epot += ep
+    out = np.zeros((len(ev.t), 3))
+    ball_series(*(np.asarray(k[key], dtype=float) for key in ("ey", "ez", "evy", "evz")), float(L.k_b1),
+                float(L.k_b2), float(L.c_b), out)
+    ev.out("ball_force_y_n", out[:, 0].copy())
+    ev.out("ball_force_z_n", out[:, 1].copy())
+    ev.epot += out[:, 2]
     ev.dissipated("ball_damping", L.c_b * (np.square(k["evy"]) + np.square(k["evz"])))
 
 
 def _post_ball_drag(ev: Evaluation, L) -> None:
-    """Harris-Palmgren drag on the inner race, eqs 23-27 (load = ball force and face load)."""
+    """Harris-Palmgren drag on the inner race, eqs 23-27 (load = ball force and face load; compiled:
+    ``bearing_kernel.drag_series``)."""
+    from .bearing_kernel import drag_series
+
     k, pre = ev.kin, ev.bearing.name + "_"
-    by, bz = ev.series[pre + "ball_force_y_n"].tolist(), ev.series[pre + "ball_force_z_n"].tolist()
-    thp = np.array([harris_palmgren_fast(w, math.hypot(y, z), n + L.drag_axial_preload, L.hp)
-                    for w, y, z, n in zip(k["wi"], by, bz, k["n_ax"])])
+    thp = np.zeros(len(ev.t))
+    drag_series(np.asarray(k["wi"], dtype=float), np.asarray(ev.series[pre + "ball_force_y_n"], dtype=float),
+                np.asarray(ev.series[pre + "ball_force_z_n"], dtype=float), np.asarray(k["n_ax"], dtype=float),
+                float(L.drag_axial_preload), tuple(float(x) for x in L.hp), thp)
     ev.out("drag_torque_nm", thp)
     ev.dissipated("ball_drag", -thp * np.asarray(k["wi"]))
 
@@ -337,21 +331,18 @@ def _post_worn_drag(ev: Evaluation, L) -> None:
 
 def _post_ribbon(ev: Evaluation, L) -> None:
     """Ribbon damper, eqs 28-29: force on the outer race, elastic energy, viscous and
-    cross-coupled (hysteretic) powers."""
+    cross-coupled (hysteretic) powers (compiled: ``bearing_kernel.ribbon_series``)."""
+    from .bearing_kernel import ribbon_series
+
     k = ev.kin
-    nt = len(ev.t)
-    gy, gz, ep, pc = np.zeros(nt), np.zeros(nt), np.zeros(nt), np.zeros(nt)
-    for i in range(nt):
-        oy, oz, ovy, ovz = k["oy"][i], k["oz"][i], k["ovy"][i], k["ovz"][i]
-        gy[i], gz[i] = y_, z_ = ribbon_force(oy, oz, ovy, ovz, L.k_rib, L.c_rib, L.eta, L.v_reg)
-        ep[i] = 0.5 * L.k_rib * (oy * oy + oz * oz)
-        ccy, ccz = y_ + L.c_rib * ovy + L.k_rib * oy, z_ + L.c_rib * ovz + L.k_rib * oz
-        pc[i] = -(ccy * ovy + ccz * ovz)
-    ev.out("ribbon_force_y_n", gy)
-    ev.out("ribbon_force_z_n", gz)
-    ev.epot += ep
+    out = np.zeros((len(ev.t), 4))
+    ribbon_series(*(np.asarray(k[key], dtype=float) for key in ("oy", "oz", "ovy", "ovz")), float(L.k_rib),
+                  float(L.c_rib), float(L.eta), float(L.v_reg), out)
+    ev.out("ribbon_force_y_n", out[:, 0].copy())
+    ev.out("ribbon_force_z_n", out[:, 1].copy())
+    ev.epot += out[:, 2]
     ev.dissipated("ribbon_damping", L.c_rib * (np.square(k["ovy"]) + np.square(k["ovz"])))
-    ev.dissipated("ribbon_cross_coupling", pc)
+    ev.dissipated("ribbon_cross_coupling", out[:, 3].copy())
 
 
 def _post_outer_coulomb(ev: Evaluation, L) -> None:

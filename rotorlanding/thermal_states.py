@@ -63,8 +63,8 @@ import math
 import numba
 import numpy as np
 
-from user_forces.contact_stress import STEEL_E_STAR, sleeve_ring_line
-from user_forces.thermal import (NODE_NAMES, STEEL_52100, CatcherThermalGeometry, blok_partition_fast,
+from user_forces.contact_stress import STEEL_E_STAR, conformal_radius
+from user_forces.thermal import (NODE_NAMES, STEEL_52100, CatcherThermalGeometry,
                                  catcher_bearing_network)
 
 SPLIT_WARN = 0.05      # max interval / fastest time constant above which the summary warns
@@ -177,19 +177,21 @@ def _modal_run(vec, sq, lam, g, t_amb, s_amb, z, dt, heat):
 
 def blok_sleeve_share(fn, omega, omega_i, laws, width, material=STEEL_52100):
     """Share of the sleeve-bore contact heat that goes into the sleeve, per sample (module docstring)."""
-    k, chi = material.conductivity, material.diffusivity
+    from .bearing_kernel import blok_sleeve_series
+
     out = np.empty(len(fn))
-    for i, (f, w, wi) in enumerate(zip(fn, omega, omega_i)):
-        b = sleeve_ring_line(f, laws.sleeve_radius, laws.race_radius, width, STEEL_E_STAR)[1] if f > 0.0 else 0.0
-        if b > 0.0:
-            out[i] = blok_partition_fast(w * laws.sleeve_radius, wi * laws.race_radius, b, k, chi, k, chi)
-        else:
-            out[i] = 0.5  # no contact, no heat: the value does not matter
+    # the half-width of the aligned line contact (sleeve_ring_line) and Blok's partition, compiled;
+    # 0.5 where there is no contact (no heat: the value does not matter)
+    blok_sleeve_series(np.asarray(fn, dtype=float), np.asarray(omega, dtype=float), np.asarray(omega_i, dtype=float),
+                       float(laws.sleeve_radius), float(laws.race_radius),
+                       conformal_radius(laws.sleeve_radius, laws.race_radius), float(width), STEEL_E_STAR,
+                       material.conductivity, material.diffusivity, out)
     return out
 
 
 def node_heat_power(ev, laws) -> np.ndarray:
     """Heat power into each node (n_samples x 5) [W] from the current bearing's booked powers."""
+    from .bearing_kernel import blok_face_series
     from .mechanisms import heat_routes
 
     k = ev.kin
@@ -214,9 +216,9 @@ def node_heat_power(ev, laws) -> np.ndarray:
                 r_m = 0.5 * (laws.face_inner_radius + laws.face_outer_radius)
                 half = 0.5 * (laws.face_outer_radius - laws.face_inner_radius)
                 m = STEEL_52100
-                beta_a = np.array([blok_partition_fast(abs(w) * r_m, abs(wi) * r_m, half, m.conductivity,
-                                                       m.diffusivity, m.conductivity, m.diffusivity)
-                                   for w, wi in zip(k["omega"], k["wi"])])
+                beta_a = np.empty(nt)
+                blok_face_series(np.asarray(k["omega"], dtype=float), np.asarray(k["wi"], dtype=float), r_m, half,
+                                 m.conductivity, m.diffusivity, beta_a)
             q[:, 0] += beta_a * p
             q[:, 1] += (1.0 - beta_a) * p
         else:

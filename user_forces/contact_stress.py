@@ -184,6 +184,12 @@ def line_contact(force, length, r_equiv, e_star):
     _positive("length", length)
     _positive("r_equiv", r_equiv)
     _positive("e_star", e_star)
+    return line_contact_fast(force, length, r_equiv, e_star)
+
+
+def line_contact_fast(force, length, r_equiv, e_star):
+    """:func:`line_contact` without the argument checks (numba leaf: the post-processing compiles it
+    for every output sample, ``rotorlanding.bearing_kernel.blok_sleeve_series``)."""
     if force == 0.0:
         return 0.0, 0.0
     return sqrt(force * e_star / (pi * length * r_equiv)), sqrt(4.0 * force * r_equiv / (pi * length * e_star))
