@@ -54,7 +54,8 @@ from .landing import G_ACC, BearingSpec, LandingSpec
 from .params import OMEGA_REG_HP
 
 _njit = numba.njit(cache=True, fastmath=False)
-# every law the kernel evaluates, compiled unchanged from user_forces (no law is written here)
+# every law the kernel evaluates, compiled unchanged from user_forces (no law is written here; the
+# post-processing series at the end add only the energy and power bookkeeping around the laws)
 (_radial_contact, _axial_force, _axial_rub_q, _worn_drag, _worn_dev, _worn_fr_law, _ball_force, _hp_law,
  _ribbon_force, _outer_race_friction, _windage, _windage_d, _drive, _amb) = map(_njit, (
     _radial_contact_py, _axial_force_py, _axial_rub_q_py, _worn_drag_py, _worn_dev_py, _worn_fr_law_py,

@@ -119,7 +119,7 @@ def _write(scenario, out, spec, t, q, v, stats, plots, results=True) -> dict:
                       t=t, q=q, v=v, series=series, units=series_units(spec.bearing_names), summary=summary,
                       complete=stats["complete"],
                       t_reached=float(t[-1]), message=summary.get("message", ""))
-    # the summary is final only once results.h5 is: a kill in between leaves `running`
+    # the summary is final only once results.h5 is (when written): a kill in between leaves `running`
     atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
     if plots:
         plot_files = __import__("rotorlanding.plots", fromlist=["plot_all"]).plot_all(

@@ -137,10 +137,48 @@ def test_results_false_writes_the_same_summary_and_no_results_file(tmp_path):
     strip = lambda s: {k: v for k, v in s.items() if k != "performance"}  # noqa: E731 (wall times differ)
     assert strip(lean) == strip(full)
     assert strip(json.loads((tmp_path / "lean" / "summary.json").read_text())) == strip(full)
-    # validate: a member of a figure case keeps its results.h5, any other member does not
+    # validate: every job says whether it writes results.h5; the members of the figure's cases do
+    from rotorlanding.validate import _ensemble_jobs
+
+    jobs = _ensemble_jobs(tmp_path, 0.01, None)
+    assert {j[0].rsplit("_drop", 1)[0] for j in jobs if j[-1]} == set(FIGURE_CASES)
+    assert any(j[0].startswith("heldout_") for j in jobs) and not any(j[-1] for j in jobs if j[0].startswith("heldout_"))
     ens = tmp_path / "ensembles"
-    for key in (f"{FIGURE_CASES[0]}_drop0", "heldout_3000_drop3"):
-        _run_case((key, "no_whirl_landing.toml", [], str(ens), 0.01, None, False))
+    for key, keep in ((f"{FIGURE_CASES[0]}_drop0", True), ("heldout_3000_drop3", False)):
+        _run_case((key, "no_whirl_landing.toml", [], str(ens), 0.01, None, False, keep))
     assert (ens / f"{FIGURE_CASES[0]}_drop0" / "results.h5").is_file()
     assert not (ens / "heldout_3000_drop3" / "results.h5").exists()
     assert (ens / "heldout_3000_drop3" / "summary.json").is_file()
+
+
+def test_radial_post_hook_books_each_power_and_force_in_its_series(tmp_path):
+    """The compiled radial series feed the right outputs (a swap of the friction and damping powers
+    would keep the energy balance): at samples in contact, the hook's series equal the law, and
+    the two power series equal the law's friction and Hunt-Crossley powers summed over the bearings."""
+    from rotorlanding.postprocess import evaluate
+    from rotorlanding.run import simulate
+
+    sc = load_scenario(ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml", ["operating.t_end=0.08"])
+    spec, t, q, v, _ = simulate(sc, progress=False)
+    ser = evaluate(spec, t, q, v)
+    pre = spec.bearings[0].name + "_"
+    hit = np.flatnonzero(ser[pre + "penetration_m"] > 0)
+    assert hit.size > 10
+    for k in hit[:: max(1, hit.size // 7)]:
+        p_fric = p_damp = 0.0
+        for b in spec.bearings:
+            L, s, r = b.laws, b.i_station, b.i_race
+            dy, dz = q[k, s] - q[k, r], q[k, s + 1] - q[k, r + 1]
+            dvy, dvz = v[k, s] - v[k, r], v[k, s + 1] - v[k, r + 1]
+            fy, fz, _, _, fn, delta, vs, pf = radial_contact(dy, dz, dvy, dvz, v[k, spec.i_theta], v[k, r + 2],
+                                                             L.clearance, L.k_hertz, L.exponent, L.k_visc, L.mu_rad,
+                                                             L.v_reg, L.sleeve_radius, L.race_radius)
+            got = [ser[b.name + "_" + n][k] for n in ("contact_force_y_n", "contact_force_z_n", "normal_force_n",
+                                                     "penetration_m", "slip_velocity_m_s")]
+            assert got == pytest.approx([fy, fz, fn, delta, vs], rel=1e-12, abs=1e-15)
+            p_fric += pf
+            if delta > 0:
+                p_damp += (fn - L.k_hertz * delta ** L.exponent) * (dy * dvy + dz * dvz) / math.hypot(dy, dz)
+        assert ser["power_radial_friction_w"][k] == pytest.approx(p_fric, rel=1e-12)
+        assert ser["power_contact_damping_w"][k] == pytest.approx(p_damp, rel=1e-9, abs=1e-9)
+        assert p_fric > 0 and p_damp != 0.0

@@ -4,6 +4,7 @@ paper-reproduction issue); it fails until the rig is calibrated (see docs/valida
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from rotorlanding.cli import main
@@ -160,8 +161,21 @@ def test_validation_judges_the_ensemble_and_the_paper_measuring_node():
     # every statistical verdict carries its margin and the margin's standard error
     rise = ok["forward whirl frequency rises with speed (DE)"]
     assert rise["margin"] == pytest.approx(77.0 - 65.35) and rise["se"] > 0  # the smaller step; 7000 rpm: median of 65.0..65.7
+    assert not rise["within_noise"]
     race = ok["no-whirl: inner race reaches rotor speed"]
     assert race["margin"] is not None and race["se"] is not None
+    # spread members: the race ratio's median error is the median rule's, and a step of the rising
+    # frequencies inside its noise flags the verdict though the other step is clear of it
+    spread = {"no_whirl": [_member("none", race=0.972 + 0.01 * (k - 3.5)) for k in range(8)],
+              "forward_7000": [_member("forward", 75.5 + 2.0 * (k - 3.5), 0.1) for k in range(8)]}
+    c = {c["check"]: c for c in evaluate_cases(s, _paper_ensembles(**spread))["checks"]}
+    race = c["no-whirl: inner race reaches rotor speed"]
+    assert race["se"] == pytest.approx(1.2533 * np.std([0.01 * (k - 3.5) for k in range(8)], ddof=1) / 8 ** 0.5,
+                                       rel=1e-3)
+    assert race["pass"] and race["margin"] == pytest.approx(0.002) and race["within_noise"]
+    rise = c["forward whirl frequency rises with speed (DE)"]
+    assert rise["pass"] and rise["margin"] == pytest.approx(1.5)  # 77 - 75.5, the smaller step
+    assert rise["within_noise"] and rise["se"] > 1.5  # the 7000 rpm median's error; 75.5 - 48 is clear of it
 
 
 def test_band_rule_margins_and_provenance():
