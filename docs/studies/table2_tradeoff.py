@@ -48,7 +48,32 @@ NARROW = {
     "bearings.NDE.c_rib": {"min": 8e3, "max": 8e4, "log": True},
     "bearings.DE.eta,bearings.NDE.eta": {"min": 0.08, "max": 0.35},
 }
+#: the third stage (``--de-end``, seed 18, 48 designs): the DE end's two masses free as well (thrust
+#: disk and coupling hub, inside their sourced bounds), each disk's inertias scaled with its mass
+#: (same diameters: Ip and It ~ m for a change of thickness; ``_with_inertias``)
+DE_END = {
+    "rotor.sections.3.outer_diameter": {"min": 0.038, "max": 0.046},
+    "rotor.disks.4.outer_diameter": {"min": 0.40, "max": 0.48},
+    "rotor.disks.2.mass": {"min": 4.0, "max": 16.0, "log": True},
+    "rotor.disks.3.mass": {"min": 1.5, "max": 8.0, "log": True},
+    "bearings.DE.c_rib": {"min": 2e3, "max": 6e4, "log": True},
+    "bearings.NDE.c_rib": {"min": 2e3, "max": 8e4, "log": True},
+    "bearings.DE.eta,bearings.NDE.eta": {"min": 0.05, "max": 0.35},
+}
+#: the rig's DE-end disks (scenarios/rig_rotor.toml): mass, polar and transverse inertia
+_DE_END_BASE = {2: (14.0, 0.1081, 0.05591), 3: (5.0, 0.011, 0.008)}
 CASES = ["fw3000", "fw7000", "fw10000"]
+
+
+def _with_inertias(design: dict) -> dict:
+    """A design with each DE-end disk's inertias scaled by its mass ratio to the rig's."""
+    out = dict(design)
+    for i, (m0, ip0, it0) in _DE_END_BASE.items():
+        m = design.get(f"rotor.disks.{i}.mass")
+        if m is not None:
+            out[f"rotor.disks.{i}.polar_inertia"] = ip0 * m / m0
+            out[f"rotor.disks.{i}.transverse_inertia"] = it0 * m / m0
+    return out
 #: our name -> (the paper's key in Table 2, scale to mm / kN)
 _T2_KEYS = {"disp_max_mm": ("v_disp_max_m", 1e3), "disp_min_mm": ("v_disp_min_m", 1e3),
             "force_max_kn": ("v_force_max_n", 1e-3), "force_min_kn": ("v_force_min_n", 1e-3)}
@@ -82,7 +107,7 @@ def run(samples: int, seed: int, drops: int, ranges: dict = RANGES) -> list[dict
     from rotorlanding.config import sample_ranges
 
     _check_ranges({}, ranges, CASES)  # every range end loads in every case (bounds, schema)
-    designs = sample_ranges(ranges, samples, seed)
+    designs = [_with_inertias(d) for d in sample_ranges(ranges, samples, seed)]
     sp = {"designs": designs, "t_end": 1.0, "fixed": {}, "cases": CASES, "ensemble": drops}
     res = _run_all(_jobs(dict(enumerate(designs)), sp, 1.0), 2)
     rows = []
@@ -132,6 +157,8 @@ def main(argv=None) -> int:
     ap.add_argument("--rows", default=None, help="summarise an existing rows.json instead of landing")
     ap.add_argument("--narrow", action="store_true", help="the second stage's ranges (NARROW; use --seed 17 "
                     "--samples 48 --out docs/studies/table2_tradeoff/narrow to repeat it)")
+    ap.add_argument("--de-end", action="store_true", help="the third stage's ranges (DE_END; use --seed 18 "
+                    "--samples 48 --out docs/studies/table2_tradeoff/de_end to repeat it)")
     a = ap.parse_args(argv)
     if a.drops < 2:
         ap.error(f"--drops {a.drops}: give 2 or more (calibrate judges the DE journal on ensembles only)")
@@ -139,7 +166,7 @@ def main(argv=None) -> int:
     if a.rows:
         rows = json.loads(Path(a.rows).read_text())
     else:
-        rows = run(a.samples, a.seed, a.drops, NARROW if a.narrow else RANGES)
+        rows = run(a.samples, a.seed, a.drops, DE_END if a.de_end else NARROW if a.narrow else RANGES)
     out.mkdir(parents=True, exist_ok=True)
     from rotorlanding.safeio import atomic_write_text
 
