@@ -1,8 +1,8 @@
 """Session-16 study: Table 2's DE numbers against the DE journal's forward whirl (issue 15).
 
 usage (from the repository root):
-    python docs/studies/table2_tradeoff.py [--samples 64] [--seed 16] [--drops 4]
-                                           [--out docs/studies/table2_tradeoff] [--narrow]
+    python docs/studies/table2_tradeoff.py [--stage wide|narrow|de_end] [--drops 4]
+                                           [--samples N] [--seed S] [--out DIR] [--rows ROWS.json]
 
 Monte Carlo over five rig values, each inside its sourced bound (`[bounds]` of
 scenarios/rig_rotor.toml and scenarios/rig/rig.toml): the main shaft and actuator disk diameters
@@ -31,34 +31,30 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 
-#: the searched values and their ranges (each inside the rig files' sourced bound)
-RANGES = {
-    "rotor.sections.3.outer_diameter": {"min": 0.036, "max": 0.048},
-    "rotor.disks.4.outer_diameter": {"min": 0.38, "max": 0.49},
-    "bearings.DE.c_rib": {"min": 2e3, "max": 8e4, "log": True},
-    "bearings.NDE.c_rib": {"min": 2e3, "max": 8e4, "log": True},
-    "bearings.DE.eta,bearings.NDE.eta": {"min": 0.05, "max": 0.4},
-}
-#: the second stage (``--narrow``, seed 17, 48 designs): around the trade-off's boundary, where the
-#: first stage's designs with two or more Table 2 numbers in band lay
-NARROW = {
-    "rotor.sections.3.outer_diameter": {"min": 0.040, "max": 0.045},
-    "rotor.disks.4.outer_diameter": {"min": 0.40, "max": 0.475},
-    "bearings.DE.c_rib": {"min": 8e3, "max": 6e4, "log": True},
-    "bearings.NDE.c_rib": {"min": 8e3, "max": 8e4, "log": True},
-    "bearings.DE.eta,bearings.NDE.eta": {"min": 0.08, "max": 0.35},
-}
-#: the third stage (``--de-end``, seed 18, 48 designs): the DE end's two masses free as well (thrust
-#: disk and coupling hub, inside their sourced bounds), each disk's inertias scaled with its mass
-#: (same diameters: Ip and It ~ m for a change of thickness; ``_with_inertias``)
-DE_END = {
-    "rotor.sections.3.outer_diameter": {"min": 0.038, "max": 0.046},
-    "rotor.disks.4.outer_diameter": {"min": 0.40, "max": 0.48},
-    "rotor.disks.2.mass": {"min": 4.0, "max": 16.0, "log": True},
-    "rotor.disks.3.mass": {"min": 1.5, "max": 8.0, "log": True},
-    "bearings.DE.c_rib": {"min": 2e3, "max": 6e4, "log": True},
-    "bearings.NDE.c_rib": {"min": 2e3, "max": 8e4, "log": True},
-    "bearings.DE.eta,bearings.NDE.eta": {"min": 0.05, "max": 0.35},
+def _space(shaft, disk, c_rib_de, c_rib_nde, eta, thrust_disk=None, hub=None) -> dict:
+    """A stage's searched values as calibrate's ranges, each (min, max) inside the rig files' sourced
+    bound: main shaft and actuator disk diameters [m], the DE-end masses [kg] (optional; their
+    inertias follow, ``_with_inertias``), both ribbon dampings [N s/m] and eta (both bearings)."""
+    out = {"rotor.sections.3.outer_diameter": {"min": shaft[0], "max": shaft[1]},
+           "rotor.disks.4.outer_diameter": {"min": disk[0], "max": disk[1]}}
+    for i, r in ((2, thrust_disk), (3, hub)):
+        if r is not None:
+            out[f"rotor.disks.{i}.mass"] = {"min": r[0], "max": r[1], "log": True}
+    out["bearings.DE.c_rib"] = {"min": c_rib_de[0], "max": c_rib_de[1], "log": True}
+    out["bearings.NDE.c_rib"] = {"min": c_rib_nde[0], "max": c_rib_nde[1], "log": True}
+    out["bearings.DE.eta,bearings.NDE.eta"] = {"min": eta[0], "max": eta[1]}
+    return out
+
+
+#: the three stages (``--stage``): seed, designs, output folder under docs/studies/table2_tradeoff,
+#: ranges. narrow: around the trade-off's boundary, where the wide stage's designs with two or more
+#: Table 2 numbers in band lay; de_end: the DE end's two masses free as well (thrust disk and
+#: coupling hub), each disk's inertias scaled with its mass (same diameters: Ip and It ~ m)
+STAGES = {
+    "wide": (16, 64, "", _space((0.036, 0.048), (0.38, 0.49), (2e3, 8e4), (2e3, 8e4), (0.05, 0.4))),
+    "narrow": (17, 48, "narrow", _space((0.040, 0.045), (0.40, 0.475), (8e3, 6e4), (8e3, 8e4), (0.08, 0.35))),
+    "de_end": (18, 48, "de_end", _space((0.038, 0.046), (0.40, 0.48), (2e3, 6e4), (2e3, 8e4), (0.05, 0.35),
+                                        thrust_disk=(4.0, 16.0), hub=(1.5, 8.0))),
 }
 #: the rig's DE-end disks (scenarios/rig_rotor.toml): mass, polar and transverse inertia
 _DE_END_BASE = {2: (14.0, 0.1081, 0.05591), 3: (5.0, 0.011, 0.008)}
@@ -101,7 +97,7 @@ def table2(r: dict) -> dict:
     return {**vals, "in_band": sum(abs(vals[k] - v) <= b for k, (v, b) in table2_bands().items())}
 
 
-def run(samples: int, seed: int, drops: int, ranges: dict = RANGES) -> list[dict]:
+def run(samples: int, seed: int, drops: int, ranges: dict) -> list[dict]:
     sys.path.insert(0, str(ROOT))
     from rotorlanding.calibrate import _check_ranges, _jobs, _run_all, score
     from rotorlanding.config import sample_ranges
@@ -149,24 +145,22 @@ def summary(rows: list[dict], drops: int) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--samples", type=int, default=64)
-    ap.add_argument("--seed", type=int, default=16)
+    ap.add_argument("--stage", choices=list(STAGES), default="wide")
+    ap.add_argument("--samples", type=int, default=None, help="designs (default: the stage's)")
+    ap.add_argument("--seed", type=int, default=None, help="(default: the stage's)")
     ap.add_argument("--drops", type=int, default=4, help="drops per speed and design (>= 2: one drop is "
                     "judged on its landing class, not the DE journal's)")
-    ap.add_argument("--out", default=str(ROOT / "docs" / "studies" / "table2_tradeoff"))
+    ap.add_argument("--out", default=None, help="(default: docs/studies/table2_tradeoff[/STAGE])")
     ap.add_argument("--rows", default=None, help="summarise an existing rows.json instead of landing")
-    ap.add_argument("--narrow", action="store_true", help="the second stage's ranges (NARROW; use --seed 17 "
-                    "--samples 48 --out docs/studies/table2_tradeoff/narrow to repeat it)")
-    ap.add_argument("--de-end", action="store_true", help="the third stage's ranges (DE_END; use --seed 18 "
-                    "--samples 48 --out docs/studies/table2_tradeoff/de_end to repeat it)")
     a = ap.parse_args(argv)
     if a.drops < 2:
         ap.error(f"--drops {a.drops}: give 2 or more (calibrate judges the DE journal on ensembles only)")
-    out = Path(a.out)
+    seed, samples, sub, ranges = STAGES[a.stage]
+    out = Path(a.out) if a.out else ROOT / "docs" / "studies" / "table2_tradeoff" / sub
     if a.rows:
         rows = json.loads(Path(a.rows).read_text())
     else:
-        rows = run(a.samples, a.seed, a.drops, DE_END if a.de_end else NARROW if a.narrow else RANGES)
+        rows = run(a.samples or samples, seed if a.seed is None else a.seed, a.drops, ranges)
     out.mkdir(parents=True, exist_ok=True)
     from rotorlanding.safeio import atomic_write_text
 
