@@ -18,7 +18,10 @@ time) go to ``--out`` (markdown table) and a CSV beside it, rewritten atomically
 a re-run skips the cases already in the CSV (``--fresh`` starts over).
 
 usage: nice -n 5 python benchmarks/diagnose_bench.py [--out benchmarks/results/diagnose_bench.md]
-       [--only CASE,...] [--maxiter 5] [--fresh]
+       [--only CASE,...] [--maxiter 5] [--fresh] [--repeats 4]
+
+``--repeats M``: each case is M records of repeated landings (each dropped from its own random
+point within the AMB's 5 um position error), diagnosed together as their mean features.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ import argparse
 import csv
 import io
 import json
+import math
 import sys
 import tempfile
 import time
@@ -132,22 +136,37 @@ def judge(case: dict, res: dict) -> bool:
     return (res["explanation"] == "parameter" and [q["key"] for q in res["named_parameters"]] == truth)
 
 
-def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1) -> dict:
+def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1) -> dict:
     from sensor_model import C, KNOWN_RIG, write_record
 
-    from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis
+    from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
 
     model = tmp / f"{case['case']}.toml"
     model.write_text(f'{KNOWN_RIG}\n[effects]\n' + "".join(f"{e} = false\n" for e in case["off"])
                      + '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n' + (THRUST if case["thrust"] else ""))
     rec = tmp / f"{case['case']}.csv"
     sen = sensor(i, case)
-    write_record(model, case["sets"], rec, clearance=C, seed=sen["seed"], fs_hz=sen["fs_hz"],
-                 pre_trigger_s=sen["pre_trigger_s"], drop_at_s=sen["drop_at_s"], channels=sen["channels"],
-                 noise_by_channel=sen["noise_by_channel"])
+    if repeats == 1:
+        write_record(model, case["sets"], rec, clearance=C, seed=sen["seed"], fs_hz=sen["fs_hz"],
+                     pre_trigger_s=sen["pre_trigger_s"], drop_at_s=sen["drop_at_s"], channels=sen["channels"],
+                     noise_by_channel=sen["noise_by_channel"])
+    else:
+        # repeated landings: the same rig and logger, each drop from its own random point within
+        # the AMB's 5 um position error (a real rig is never dropped twice from the same point), its
+        # own noise, phase and drop instant
+        rng = np.random.default_rng(5000 + i)
+        recs = []
+        for k in range(repeats):
+            r, a = 5e-6 * float(np.sqrt(rng.uniform())), float(rng.uniform(0.0, 2.0 * np.pi))
+            recs.append(tmp / f"{case['case']}_{k}.csv")
+            write_record(model, case["sets"] + [f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"], recs[-1],
+                         clearance=C, seed=sen["seed"] + 7919 * k, fs_hz=sen["fs_hz"],
+                         pre_trigger_s=sen["pre_trigger_s"], drop_at_s=float(rng.uniform(0.5, 10.0)),
+                         channels=sen["channels"], noise_by_channel=sen["noise_by_channel"])
     t0 = time.perf_counter()
     # as the command does: the drop is detected, the record's noise measured (info)
-    clearance, _, meas, info = measured_for_diagnosis(model, rec, [], None)
+    clearance, _, meas, info = (measured_for_diagnosis(model, rec, [], None) if repeats == 1
+                                else records_for_diagnosis(model, recs, []))
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
                    max_effects=case["max_effects"], journals=journals, ensemble=ensemble)
     wall = time.perf_counter() - t0
@@ -202,6 +221,9 @@ def main(argv=None) -> int:
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--journals", default="DE", help="diagnose --journals: DE (default) or DE,NDE")
     ap.add_argument("--ensemble", type=int, default=1, help="diagnose --ensemble: drops per model variant (default 1)")
+    ap.add_argument("--repeats", type=int, default=1,
+                    help="records per case: repeated landings of the rig, each from a random point of the 5 um "
+                         "circle's disc, diagnosed together (default 1: one record, the rig dropped centred)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -220,7 +242,7 @@ def main(argv=None) -> int:
             if case["case"] in done or (only and case["case"] not in only):
                 continue
             try:
-                row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble)
+                row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],

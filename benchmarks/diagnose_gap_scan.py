@@ -8,7 +8,7 @@ from a circle). Prints both scans and the number of interior local minima of eac
 (atomically) with --out.
 
 usage: python benchmarks/diagnose_gap_scan.py [--mu 0.05,0.1,...] [--ensemble 8] [--radius-m 3e-5]
-       [--workers 2] [--out scan.json]
+       [--workers 2] [--records 4] [--out scan.json]
 """
 
 from __future__ import annotations
@@ -31,17 +31,34 @@ def local_minima(g: list[float]) -> int:
     return sum(1 for i in range(1, len(g) - 1) if g[i] < g[i - 1] and g[i] < g[i + 1])
 
 
-def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22, t_end: float = 0.3) -> dict:
+def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22, t_end: float = 0.3,
+         records: int = 1) -> dict:
+    """``records`` > 1: the "measurement" is that many records of repeated landings, each dropped
+    from its own random point within 5 um (seeded), compared as their mean features (diagnose's
+    ``Repeated``) with the model's ensembles (``ensemble`` drops of radius ``radius_m``)."""
+    import math
+
+    import numpy as np
     from sensor_model import write_record
 
     from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis
+    from rotorlanding.features import ensemble_features
 
     with tempfile.TemporaryDirectory() as tmp:
         model = Path(tmp) / "model.toml"
         model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\n[operating]\nspeed_rpm = 7000.0\nt_end = {t_end!r}\n')
-        write_record(model, [f"contact.mu_rad={truth!r}"], Path(tmp) / "rig.csv", clearance=C, seed=3)
-        _, _, meas, _ = measured_for_diagnosis(model, Path(tmp) / "rig.csv", [], None)
-        out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m}
+        if records == 1:
+            write_record(model, [f"contact.mu_rad={truth!r}"], Path(tmp) / "rig.csv", clearance=C, seed=3)
+            _, _, meas, _ = measured_for_diagnosis(model, Path(tmp) / "rig.csv", [], None)
+        else:
+            rng, feats = np.random.default_rng(3), []
+            for k in range(records):
+                r, a = 5e-6 * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi)
+                write_record(model, [f"contact.mu_rad={truth!r}", f"amb.drop_offset_m=[{r * math.cos(a)!r}, "
+                                     f"{r * math.sin(a)!r}]"], Path(tmp) / f"rig{k}.csv", clearance=C, seed=3 + k)
+                feats.append(measured_for_diagnosis(model, Path(tmp) / f"rig{k}.csv", [], None)[2])
+            meas = ensemble_features(feats)
+        out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m, "records": records}
         for label, n in (("single", 1), ("ensemble", ensemble)):
             sim = _Simulator(model, [Point("", [], meas)], C, workers, [], ensemble=n, ensemble_radius_m=radius_m)
             try:
@@ -58,9 +75,11 @@ def main(argv=None) -> int:
     ap.add_argument("--ensemble", type=int, default=8)
     ap.add_argument("--radius-m", type=float, default=3e-5)
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--records", type=int, default=1,
+                    help="records of repeated landings as the measurement (default 1: one record, dropped centred)")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
-    res = scan([float(x) for x in a.mu.split(",")], a.ensemble, a.radius_m, a.workers)
+    res = scan([float(x) for x in a.mu.split(",")], a.ensemble, a.radius_m, a.workers, records=a.records)
     for label in ("single", "ensemble"):
         print(f"{label:8s}: " + " ".join(f"{g:.2f}" for g in res[label]) + f"  (local minima {res[label + '_local_minima']})")
     if a.out:

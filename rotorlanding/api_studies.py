@@ -514,7 +514,9 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
     Parameters:
         measured: the measurement file: a record (CSV, .mat, a results.h5) or a feature table
             with one or several operating points (.toml/.json; ``docs/measured_data.md``), e.g.
-            ``scenarios/measured/paper_table2_fig39.toml``.
+            ``scenarios/measured/paper_table2_fig39.toml``; or a list of records of repeated
+            landings of one operating point (compared as their means with the model's ensemble
+            of as many drops).
         scenario: the model as it is: a scenario file or a :class:`Scenario` (written to
             ``out_dir``/model.toml, which the workers read).
         out_dir: output folder (created).
@@ -541,9 +543,10 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
 
     if isinstance(candidates, str):
         candidates = [c.strip() for c in candidates.split(",")]
-    if not isinstance(measured, (str, Path)):
+    many = isinstance(measured, (list, tuple))
+    if not (isinstance(measured, (str, Path)) or many and measured and all(isinstance(p, (str, Path)) for p in measured)):
         raise InputError("measured", type(measured).__name__, "must be a measurement file (path): CSV, .mat, "
-                         "results.h5 or a feature table (.toml/.json)")
+                         "results.h5 or a feature table (.toml/.json), or a list of records of repeated landings")
     if isinstance(scenario, Scenario):
         from .safeio import check_out_dir
 
@@ -554,7 +557,7 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
         scenario_path = Path(scenario)
     else:
         raise InputError("scenario", type(scenario).__name__, "must be a scenario file (path) or a rotorlanding.Scenario")
-    run_diagnose(str(scenario_path), str(measured), out_dir, sets=_override_items(set or {}),
+    run_diagnose(str(scenario_path), [str(p) for p in measured] if many else str(measured), out_dir, sets=_override_items(set or {}),
                  t_end=_seconds("t_end", t_end),
                  candidates=candidates, max_effects=max_effects, workers=workers, maxiter=maxiter,
                  time_offset_s=time_offset_s, parameters=parameters, noise_gap=noise_gap, ensemble=ensemble,

@@ -473,7 +473,9 @@ def build_parser() -> argparse.ArgumentParser:
     wm.set_defaults(func=cmd_whirl_map)
 
     dg = sub.add_parser("diagnose", help="find the missing effect that explains a model-measurement gap")
-    dg.add_argument("--measured", required=True, help="CSV, .mat, results.h5 or a feature table (.toml/.json)")
+    dg.add_argument("--measured", required=True, nargs="+",
+                    help="CSV, .mat, results.h5 or a feature table (.toml/.json); several records of repeated "
+                         "landings of one operating point are compared as their means")
     dg.add_argument("--scenario", required=True, help="the model as it is (scenario TOML)")
     dg.add_argument("--out", default="diagnosis")
     dg.add_argument("--candidates", default=None, help="comma-separated effect names (default: every effect off except faults such as worn_bearing_drag)")

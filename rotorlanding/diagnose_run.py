@@ -10,17 +10,21 @@ that the package attribute ``rotorlanding.diagnose`` is the function.
      ``[points.NAME]`` table of a feature table, each with its scenario overrides), extract the
      same features as from the measurement, gap_before = one weighted RMS over the rows of every
      point (:func:`rotorlanding.features.gap_points`; a feature one side cannot produce is charged
-     ``features.ABSENT_FEATURE_DISTANCE``);
+     ``features.ABSENT_FEATURE_DISTANCE``); repeated landings of one point (several records,
+     :class:`Repeated`) are compared as the means of their features against the model's ensemble
+     of as many drops;
   b. the noise gate from the data (:func:`_noise_gate`): the model dropped from a 5 um circle with
      the record's own sensor noise (:func:`sensor_noise`), the 95 % prediction bound of one more
-     member's gap; a user-given drop instant is checked against the detected one;
+     member's gap (with repeated landings the members are ensembles of as many drops as there
+     are records, so the gate has the statistics of the data's means); a user-given drop instant is checked against the detected one;
   c. candidates: each effect the model lacks (switched on, its parameter calibrated within bounds
      on the gap over all points jointly; threads sharing one process pool) and each uncertain
      parameter of the scenario (its ``[bounds]``; screened either side of its value, the closest calibrated);
   d. rank by a BIC-like score n ln(gap^2) + k ln n (n feature rows, k fitted numbers) and name the
      best only if the gap is above the noise gate, its score beats the unchanged model by more
-     than 2, and either it shrinks the gap by at least ``min_improvement`` (30 %) or it makes the
-     whirl direction right at some operating point without making it wrong at another;
+     than 2, and either it shrinks the gap by at least ``min_improvement`` (30 %), or it makes the
+     whirl direction right at some operating point without making it wrong at another, or what it
+     leaves is inside its own noise gate (the candidate model's drops: a chaotic true model);
   e. ``--max-effects N`` repeats from the improved model, re-fitting everything named so far
      jointly with the new candidate (:func:`_refit`); at the end the gate of the final model judges
      what stays unexplained (``explanation`` = "unexplained", with the largest remaining features).
@@ -60,6 +64,32 @@ GRID_POINTS = 5
 
 #: post-processing mechanisms whose series no feature reads (rotorlanding.mechanisms.evaluate's skip)
 POST_NOT_NEEDED = frozenset({"catcher_thermal"})
+
+
+@dataclass
+class Repeated:
+    """Repeated landings of one operating point: the features of each record (name -> (value,
+    scale)), e.g. a test campaign's drops at one speed. A rattling landing is chaotic, so one
+    record is one draw; diagnose compares the records' mean features (``features.ensemble_features``)
+    with the model's ensemble of as many drops, and the noise gate with member ensembles of that
+    size (issue 20, points 1 and 6). ``spread``: per feature, the standard deviation over the
+    records (the data's own scatter, reported)."""
+
+    features: list
+
+    def __post_init__(self):
+        if len(self.features) < 2:
+            raise ValueError(f"Repeated needs at least 2 records, got {len(self.features)}")
+
+    @property
+    def spread(self) -> dict:
+        out = {}
+        for name in sorted({k for f in self.features for k in f}):
+            vals = [f[name][0] for f in self.features if name in f and isinstance(f[name][0], (int, float))
+                    and not isinstance(f[name][0], bool)]
+            if len(vals) >= 2:
+                out[name] = float(np.std(vals, ddof=1))
+        return out
 
 
 @dataclass
@@ -120,7 +150,7 @@ class _Simulator:
     (its speed ...), then the candidate effect and its parameter."""
 
     def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str],
-                 ensemble: int = 1, ensemble_radius_m: float | None = None):
+                 ensemble: int = 1, ensemble_radius_m: float | None = None, records: int = 1):
         self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
         self.pool = Pool(workers, blas_threads=None)  # BLAS as before (runner.worker_setup says why)
         self.count = 0
@@ -129,6 +159,9 @@ class _Simulator:
         # chaotic trajectory (issue 20, point 1)
         self.ensemble = ensemble
         self.radius = ensemble_radius_m
+        # the number of measured records whose mean features are compared (:class:`Repeated`); the
+        # noise gate's members are means of as many drops
+        self.records = records
 
     def overrides(self, p: Point, extra: list[str]) -> list[str]:
         return self.base + list(p.overrides) + list(extra)
@@ -240,6 +273,24 @@ def measured_for_diagnosis(scenario_path, measured_path, sets: list[str], time_o
                              file=measured_path)
         meas = extract_features(m, clearance=clearance, t_drop=0.0)
     return clearance, m, meas, info
+
+
+def records_for_diagnosis(scenario_path, paths, sets: list[str], option: str = "--measured"):
+    """Several records of repeated landings of one operating point, each read and its drop
+    detected on its own (:func:`measured_for_diagnosis`): (clearance, the first record, a
+    :class:`Repeated` of their features, info: the sensor noise per channel averaged over the
+    records that have it). A feature table among them is one InputError naming it."""
+    feats, noises, first = [], [], None
+    for path in paths:
+        clearance, m, meas, info = measured_for_diagnosis(scenario_path, path, sets, None)
+        if not m.channels:
+            raise InputError(option, str(path), "repeated landings must be records (time series); a feature table "
+                             "or points file is a measurement on its own", file=str(path))
+        first = first or m
+        feats.append(meas)
+        noises.append(info.get("sensor_noise", {}))
+    noise = {k: float(np.mean([n[k] for n in noises if k in n])) for k in sorted(set().union(*noises))}
+    return clearance, first, Repeated(feats), {"sensor_noise": noise}
 
 
 #: the journals whose per-journal features diagnose compares by default (``--journals``): the DE
@@ -522,8 +573,10 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
              sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
              ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS) -> dict:
-    """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is) or
-    a list of :class:`Point` (one per operating point, each with its scenario overrides).
+    """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is),
+    :class:`Repeated` (the features of several records of one point: compared as their means, the
+    model then an ensemble of as many drops unless ``ensemble`` > 1 says otherwise) or a list of
+    :class:`Point` (one per operating point, each with its scenario overrides).
     ``base_overrides``: ``--set`` changes of the model (e.g. ``effects.axial_rub=false``).
     ``parameters``: [bounds] keys tried as "wrong parameter" candidates (None: the defaults of
     :data:`DEFAULT_PARAMETERS` the scenario bounds; [] none). ``noise_gap``: None estimates the
@@ -536,7 +589,15 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     t_start = time.perf_counter()
     info = dict(info or {})
     base_overrides = list(base_overrides or [])
-    if isinstance(measured, list):
+    records = 1
+    if isinstance(measured, Repeated):
+        from .features import ensemble_features
+
+        records = len(measured.features)
+        points = [Point("", [], ensemble_features(measured.features))]
+        if ensemble == 1:
+            ensemble = records
+    elif isinstance(measured, list):
         points = measured
     else:
         if isinstance(measured, Measurement) and sensor_noise_sigma is None:
@@ -556,7 +617,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                              "keys: " + ", ".join(base.bounds), file=str(scenario_path))
     current_values = _current_values(base, parameters)
     sim = _Simulator(scenario_path, points, clearance, workers, base_overrides, ensemble=ensemble,
-                     ensemble_radius_m=ensemble_radius_m)
+                     ensemble_radius_m=ensemble_radius_m, records=records)
     terms: list[Term] = []
     named, steps, warnings = [], [], []
     try:
@@ -583,6 +644,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
         current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
         adjusted: list[str] = []
         step_gate, gate_now = gate, None   # gate_now: (overrides, _noise_gate) of the model named so far
+        own = None                         # (overrides, _noise_gate) of the last step's best candidate
         for k_step in range(max_effects):
             lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
             if candidates:
@@ -640,8 +702,22 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             produced = sorted(noise_cannot - set(_absent_in_model(best.get("rows", []))))
             if not math.isfinite(best["gap"]) or not noise["member_gaps"]:
                 produced = []  # a given gate (no members to tell what noise produces) is the only gate
-            significant = ((current_gap > step_gate or bool(produced)) and best["score"] < base_score - 2.0
-                           and (relative or (bool(fixed) and not broken)))
+            above = (current_gap > step_gate or bool(produced)) and best["score"] < base_score - 2.0
+            own = None
+            if above and not relative and not (fixed and not broken) and noise_gap is None \
+                    and best.get("term") is not None and math.isfinite(best["gap"]):
+                # the candidate's own noise: where the true model's landing is itself chaotic (mu_rad
+                # 0.3 for 0.15 on the bench, with repeated records: the fit found 0.303, the gap only
+                # fell 24 % as the data's four drops and the model's four differ by chaos), what is
+                # left may be no more than that model's scatter. Named when the remainder is inside
+                # the candidate's own gate; its gate is estimated, like the others, from its drops
+                trial = best.get("refit_terms") or terms + [best["term"]]
+                own_fixed = _terms_overrides(trial)
+                own = (own_fixed, _noise_gate(sim, best["sims"], noise_members, sensor_noise_sigma, own_fixed,
+                                              journals=journals))
+                noise_history.append(own[1]["gate"])
+            within_own = own is not None and best["gap"] <= own[1]["gate"]
+            significant = above and (relative or (bool(fixed) and not broken) or within_own)
             # the best of the other kind within 2 score units: the data do not tell them apart
             rival = next((r for r in results[1:] if r["kind"] != best["kind"] and math.isfinite(r["score"])), None)
             keys = ("effect", "kind", "gap", "parameters", "from", "bound", "score", "directions", "evaluations",
@@ -658,8 +734,10 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                           "refit": refit_info,
                           "indistinguishable_from": rival["effect"] if rival and significant
                           and rival["score"] < best["score"] + 2.0 else None,
-                          "gate": step_gate,
-                          "significant_by": (("relative improvement" if relative else "whirl direction")
+                          "gate": step_gate, "own_gate": own[1]["gate"] if own else None,
+                          "significant_by": (("relative improvement" if relative else
+                                              "whirl direction" if fixed and not broken else
+                                              "the remainder inside the candidate's own noise gate")
                                              + ("" if current_gap > step_gate else ", a feature noise cannot produce"))
                           if significant else None})
             if not significant:
@@ -682,9 +760,12 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                 # its say where a first fit off the truth makes the landing wilder (mu_ax 0.42 for 0.3:
                 # gate 1.12, which hid a second effect that took the gap 1.11 -> 0.33)
                 fixed_now = _terms_overrides(terms)
-                gate_now = (fixed_now, _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, fixed_now,
-                                                   journals=journals))
-                noise_history.append(gate_now[1]["gate"])
+                if own is not None and own[0] == fixed_now:
+                    gate_now = own
+                else:
+                    gate_now = (fixed_now, _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, fixed_now,
+                                                       journals=journals))
+                    noise_history.append(gate_now[1]["gate"])
                 step_gate = min(gate, gate_now[1]["gate"])
         if terms and noise_gap is None:
             # what stays unexplained is judged against the gate of the final model: a landing with the
@@ -693,6 +774,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             fixed_now = _terms_overrides(terms)
             if gate_now is not None and gate_now[0] == fixed_now:
                 noise_final = gate_now[1]
+            elif own is not None and own[0] == fixed_now:
+                noise_final = own[1]
             else:
                 noise_final = _noise_gate(sim, current_sims, noise_members, sensor_noise_sigma, fixed_now,
                                           journals=journals)
@@ -722,6 +805,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             "largest_remaining": [{"point": r.get("point"), "feature": r["feature"], "distance": r["distance"]}
                                   for r in largest],
             "decisive_features": decisive, "journals": list(journals),
+            "records": records,
+            "record_spread": _journal_rows(measured.spread, journals) if isinstance(measured, Repeated) else {},
             "noise": noise, "noise_gate": gate, "noise_final": noise_final, "noise_gate_final": final_gate,
             "noise_gates": noise_history, "warnings": warnings, "time_offset": info.get("time_offset"),
             "absent_in_model_before": _absent_in_model(rows_before),
@@ -739,17 +824,6 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             "ensemble": ensemble, "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
 
 
-def _between(n: int, radius_m: float | None = None) -> list[list[str]]:
-    from .ensemble import DROP_RADIUS_M
-
-    r = radius_m or DROP_RADIUS_M
-    out = []
-    for k in range(n):
-        a = 2.0 * math.pi * (k + 0.5) / n
-        out.append([f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"])
-    return out
-
-
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
                 fixed: list[str] | None = None, journals=DEFAULT_JOURNALS) -> dict:
     """The gap noise alone produces, estimated, not assumed: the model as it is dropped from
@@ -758,20 +832,38 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     noise added to its series; each member, taken as the measurement, against the centred drop.
     The gate is the one-sided 95 % prediction bound of one more member gap, mean + t(0.95, k-1)
     sqrt(1 + 1/k) s over the k member gaps (at least their largest), never below ``NOISE_GAP_MIN``
-    (the resolution of the features)."""
-    from .ensemble import drop_offsets
+    (the resolution of the features). With repeated landings (``sim.records`` > 1) each member
+    is the mean of as many drops as there are records, so the gate has the data's statistics."""
+    from .ensemble import DROP_RADIUS_M, drop_offsets
+    from .features import ensemble_features
 
     if members < 1:
         return {"gate": NOISE_GAP_MIN, "source": "minimum (no members)", "member_gaps": [], "member_features": [],
                 "member_directions": []}
+
     gaps, produced, directions = [], set(), []
-    offsets = drop_offsets(members)
-    if sim.ensemble > 1:
+    size = max(1, sim.records)
+    radius = sim.radius or DROP_RADIUS_M
+    if size > 1:
+        # repeated landings: the data are the means of ``size`` records, so each member is the mean
+        # of ``size`` drops, from points of the circle between the model ensemble's own (member g
+        # turned by (g + 1) / (members + 1) of their spacing)
+        groups = [drop_offsets(size, radius, (g + 1) / (members + 1)) for g in range(members)]
+    elif sim.ensemble > 1:
         # single drops between the ensemble's own drop points (half a step round the circle)
-        offsets = _between(members, sim.radius)
-    for sims in sim.features([list(fixed or []) + o for o in offsets], noise=sigma or None, single=True):
-        if any("__error__" in s for s in sims):
+        groups = [[o] for o in drop_offsets(members, radius, 0.5)]
+    else:
+        radius = DROP_RADIUS_M
+        groups = [[o] for o in drop_offsets(members)]
+    flat = sim.features([list(fixed or []) + o for grp in groups for o in grp], noise=sigma or None, single=True)
+    member_sims = []
+    for g in range(len(groups)):
+        drops = flat[g * size:(g + 1) * size]
+        if any("__error__" in s for d in drops for s in d):
             continue
+        member_sims.append(drops[0] if size == 1 else
+                           [ensemble_features([d[i] for d in drops]) for i in range(len(sim.points))])
+    for sims in member_sims:
         directions.append(_directions(sims))
         # the member is the "measurement": its own scales, and the journals compared (the gap's).
         # Noticed, left: a member also counts DE features the record lacks (no force channels);
@@ -794,8 +886,9 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
         k = len(gaps)
         bound = float(np.mean(gaps) + student_t.ppf(0.95, k - 1) * math.sqrt(1 + 1 / k) * np.std(gaps, ddof=1))
         gate = max(gate, bound)
-    return {"gate": gate, "source": f"{len(gaps)} drops from a 5 um circle" + (" with the record's sensor noise"
-                                                                                 if sigma else ""),
+    what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
+    return {"gate": gate, "source": f"{what} from a {1e6 * radius:g} um circle" + (" with the record's sensor noise"
+                                                                                   if sigma else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),
             "member_directions": directions}
 
@@ -938,6 +1031,11 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
              f"Noise gate: **{res['noise_gate']:.3f}** ({res['noise']['source']}; gaps of the members: "
              f"{', '.join(f'{g:.3f}' for g in res['noise']['member_gaps']) or '-'})"
              + (f"; of the final model: **{res['noise_gate_final']:.3f}**" if res.get("noise_final") else "") + ".", ""]
+    if res.get("records", 1) > 1:
+        spread = sorted(res.get("record_spread", {}).items())
+        lines += [f"Measured: **{res['records']} records** of repeated landings, compared as their mean features with "
+                  f"the model's mean over {res['ensemble']} drops; the records' own scatter (standard deviation): "
+                  + (", ".join(f"{k} {_fmt(v)}" for k, v in spread) or "-") + ".", ""]
     for w in res.get("warnings", []):
         lines += [f"**Warning**: {w}.", ""]
     if res.get("absent_in_model_before"):
@@ -1021,6 +1119,8 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     report, the names of the files written besides report.json). The command line and the API's
     ``rotorlanding.diagnose`` both call it, so their reports are the same.
 
+    ``measured_path``: one measurement file, or several records of repeated landings of one
+    operating point (a list: compared as their means, :class:`Repeated`).
     ``sets``: ``KEY=VALUE`` items (``--set``); ``t_end`` [s] overrides ``operating.t_end``;
     ``candidates``: effect names or None (every effect the model lacks, faults only on request);
     ``time_offset_s`` [s]: the drop instant in the data's clock (None: detected); ``parameters``: the
@@ -1049,8 +1149,17 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
             raise InputError(f"{opt('set')} {key}", item.split("=", 1)[-1], f"unknown effect; allowed: {', '.join(EFFECTS)}")
     if t_end is not None:
         sets.append(f"operating.t_end={t_end!r}")
+    paths = [measured_path] if isinstance(measured_path, (str, Path)) else list(measured_path)
+    if not paths:
+        raise InputError(opt("measured"), "none", "a measurement file, or several records of repeated landings")
+    if len(paths) > 1 and time_offset_s is not None:
+        raise InputError(opt("time_offset_s"), time_offset_s, f"only with one record ({len(paths)} given): the drop "
+                         "of each of several records is detected in its own data")
     try:
-        clearance, m, meas, info = measured_for_diagnosis(scenario_path, measured_path, sets, time_offset_s)
+        if len(paths) > 1:
+            clearance, m, meas, info = records_for_diagnosis(scenario_path, paths, sets, option=opt("measured"))
+        else:
+            clearance, m, meas, info = measured_for_diagnosis(scenario_path, paths[0], sets, time_offset_s)
     except InputError as err:  # the readers name the file option as the command line spells it
         if cli_names or not err.field.startswith("--"):
             raise
@@ -1080,4 +1189,4 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     return res, files
 
 
-__all__ = ["Point", "diagnose", "run_diagnose", "write_report"]
+__all__ = ["Point", "Repeated", "diagnose", "run_diagnose", "write_report"]

@@ -19,13 +19,14 @@ from .whirl import landing_whirl
 DROP_RADIUS_M = 5e-6  # m: typical AMB position-control error of a levitated rotor
 
 
-def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
-    """``--set`` overrides of the ``n`` members: drops from equally spaced points of the circle."""
+def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M, phase: float = 0.0) -> list[list[str]]:
+    """``--set`` overrides of the ``n`` members: drops from equally spaced points of the circle,
+    the first at ``phase`` (a fraction of the spacing) from the +y axis."""
     if n < 1:
         raise ValueError(f"ensemble size must be >= 1, got {n}")
     out = []
     for k in range(n):
-        a = 2.0 * math.pi * k / n
+        a = 2.0 * math.pi * (k + phase) / n
         out.append([f"amb.drop_offset_m=[{radius_m * math.cos(a)!r}, {radius_m * math.sin(a)!r}]"])
     return out
 

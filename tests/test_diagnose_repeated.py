@@ -1,0 +1,135 @@
+"""Repeated landings in diagnose (issue 20, points 1 and 6): several records of one operating
+point compared as their mean features with the model's ensemble of as many drops, and a noise
+gate whose members are means of as many drops."""
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rotorlanding.cli import main
+from rotorlanding.diagnose_run import Point, Repeated, _noise_gate, records_for_diagnosis, run_diagnose
+from rotorlanding.ensemble import drop_offsets
+from rotorlanding.errors import InputError
+from rotorlanding.features import ensemble_features, gap
+
+sys.path.insert(0, str(Path(__file__).parent))
+from sensor_model import C, KNOWN_RIG, write_record  # noqa: E402
+
+
+def _offset(o: list[str]) -> tuple[float, float]:
+    y, z = o[0].split("=", 1)[1].strip("[]").split(",")
+    return float(y), float(z)
+
+
+def test_drop_offsets_phase_turns_the_circle():
+    base = [_offset(o) for o in drop_offsets(4, 5e-6)]
+    half = [_offset(o) for o in drop_offsets(4, 5e-6, 0.5)]
+    assert base[1] == pytest.approx((0.0, 5e-6), abs=1e-20)
+    # half a spacing: 45, 135, ... degrees, on the same circle, none on the unturned points
+    assert half[0] == pytest.approx((5e-6 / math.sqrt(2), 5e-6 / math.sqrt(2)), rel=1e-12)
+    assert all(math.hypot(*p) == pytest.approx(5e-6, rel=1e-12) for p in half)
+    assert min(math.dist(p, q) for p in half for q in base) > 3e-6
+
+
+def test_repeated_needs_two_records_and_reports_their_spread():
+    with pytest.raises(ValueError):
+        Repeated([{"DE_vertical_min_m": (-2e-4, 2e-5)}])
+    r = Repeated([{"DE_vertical_min_m": (-2e-4, 2e-5), "whirl_direction": ("none", None)},
+                  {"DE_vertical_min_m": (-3e-4, 2e-5), "whirl_direction": ("none", None)},
+                  {"DE_vertical_min_m": (-4e-4, 2e-5)}])
+    assert r.spread["DE_vertical_min_m"] == pytest.approx(1e-4)   # sample standard deviation of -2, -3, -4
+    assert "whirl_direction" not in r.spread
+
+
+class _FakeSim:
+    """A simulator whose drops are features that depend on the drop point only: records the
+    offsets asked for, so the gate's member structure can be checked without a landing."""
+
+    def __init__(self, records, ensemble):
+        self.records, self.ensemble, self.radius = records, ensemble, None
+        self.points = [Point("", [], {})]
+        self.asked = []
+
+    def features(self, extras, noise=None, single=False):
+        assert single   # the gate's members are built from single drops
+        out = []
+        for extra in extras:
+            y, z = _offset([e for e in extra if e.startswith("amb.drop_offset_m")])
+            self.asked.append((y, z))
+            out.append([{"DE_vertical_min_m": (-2e-4 + 4.0 * z, 2e-5), "DE_horizontal_max_m": (1e-4 + 4.0 * y, 2e-5)}])
+        return out
+
+
+def test_gate_members_are_means_of_as_many_drops_as_records():
+    sim = _FakeSim(records=3, ensemble=3)
+    model = [ensemble_features([{"DE_vertical_min_m": (-2e-4 + 4.0 * z, 2e-5), "DE_horizontal_max_m": (1e-4 + 4.0 * y, 2e-5)}
+                                for y, z in map(_offset, drop_offsets(3))])]
+    noise = _noise_gate(sim, model, 4, None)
+    assert len(sim.asked) == 4 * 3 and "means of 3 drops" in noise["source"]
+    own = [_offset(o) for o in drop_offsets(3)]
+    assert min(math.dist(p, q) for p in sim.asked for q in own) > 1e-6   # none of the model's own drop points
+    # each member gap is the gap of the mean of its 3 drops (computed here independently)
+    expect = []
+    for g in range(4):
+        drops = sim.asked[3 * g:3 * g + 3]
+        mean = {"DE_vertical_min_m": (float(np.mean([-2e-4 + 4.0 * z for _, z in drops])), 2e-5),
+                "DE_horizontal_max_m": (float(np.mean([1e-4 + 4.0 * y for y, _ in drops])), 2e-5)}
+        expect.append(gap(mean, model[0])[0])
+    assert noise["member_gaps"] == pytest.approx(expect, rel=1e-12)
+    # one record: single drops as before
+    sim1 = _FakeSim(records=1, ensemble=1)
+    assert "4 drops from a 5 um circle" in _noise_gate(sim1, model, 4, None)["source"] and len(sim1.asked) == 4
+
+
+@pytest.fixture
+def rig_without_windage(tmp_path):
+    f = tmp_path / "model.toml"
+    f.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\nball_drag = false\n'
+                 '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    return f
+
+
+def _records(model, sets, tmp_path, n, seed):
+    """``n`` records of the rig with ``sets``, each dropped from its own random point within 5 um."""
+    rng = np.random.default_rng(seed)
+    paths = []
+    for k in range(n):
+        r, a = 5e-6 * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi)
+        paths.append(tmp_path / f"drop{k}.csv")
+        write_record(model, list(sets) + [f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"], paths[-1],
+                     clearance=C, seed=seed + k, fs_hz=5000.0, drop_at_s=float(rng.uniform(1.0, 5.0)))
+    return paths
+
+
+def test_repeated_records_name_a_weak_effect(rig_without_windage, tmp_path):
+    """Weak windage (c_w2 3e-7, the bench's weak case): four repeated landings of the rig, each
+    from its own point of the AMB's position error, against the model without windage. The gate
+    of four-drop means is about half a single drop's, and windage is named with its value."""
+    paths = _records(rig_without_windage, ["effects.windage=true", "spin.c_w2=3e-7"], tmp_path, 4, 11)
+    clearance, first, meas, info = records_for_diagnosis(rig_without_windage, paths, [])
+    assert isinstance(meas, Repeated) and len(meas.features) == 4 and first.channels
+    assert set(info["sensor_noise"]) >= {"DE_y_m", "DE_z_m"} and 0.5e-6 < info["sensor_noise"]["DE_z_m"] < 2e-6
+    res, files = run_diagnose(str(rig_without_windage), [str(p) for p in paths], tmp_path / "dg", maxiter=4,
+                              parameters=[], candidates=["windage", "ball_drag"], workers=2, cli_names=False)
+    assert res["records"] == 4 and res["ensemble"] == 4 and "means of 4 drops" in res["noise"]["source"]
+    assert res["named_effects"] == ["windage"], (res["gap_before"], res["noise_gate"], res["steps"][0]["candidates"])
+    assert res["gap_after"] <= 0.5 * res["gap_before"]
+    c_w2 = float(res["calibrated_overrides"][-1].split("=")[1])
+    assert 1.5e-7 < c_w2 < 6e-7
+    assert "4 records" in (tmp_path / "dg" / "report.md").read_text()
+
+
+def test_repeated_records_bad_input_one_line(rig_without_windage, tmp_path, capsys):
+    paths = _records(rig_without_windage, [], tmp_path, 2, 3)
+    table = tmp_path / "table.toml"
+    table.write_text("[features]\nwhirl_frequency_hz = 65.0\n")
+    with pytest.raises(InputError) as err:
+        records_for_diagnosis(rig_without_windage, [paths[0], table], [])
+    assert "table.toml" in str(err.value) and "repeated landings must be records" in str(err.value)
+    code = main(["diagnose", "--scenario", str(rig_without_windage), "--measured", str(paths[0]), str(paths[1]),
+                 "--time-offset-s", "0.2", "--out", str(tmp_path / "o")])
+    line = capsys.readouterr().err.strip()
+    assert code != 0 and "--time-offset-s" in line and "only with one record" in line and "\n" not in line
