@@ -280,8 +280,15 @@ def records_for_diagnosis(scenario_path, paths, sets: list[str], option: str = "
     detected on its own (:func:`measured_for_diagnosis`): (clearance, the first record, a
     :class:`Repeated` of their features, info: the sensor noise per channel averaged over the
     records that have it). A feature table among them is one InputError naming it."""
+    from pathlib import Path
+
     feats, noises, first = [], [], None
+    seen = set()
     for path in paths:
+        key = Path(path).resolve()
+        if key in seen:
+            raise InputError(option, str(path), "given twice: repeated landings are different records", file=str(path))
+        seen.add(key)
         clearance, m, meas, info = measured_for_diagnosis(scenario_path, path, sets, None)
         if not m.channels:
             raise InputError(option, str(path), "repeated landings must be records (time series); a feature table "
@@ -595,8 +602,12 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
 
         records = len(measured.features)
         points = [Point("", [], ensemble_features(measured.features))]
-        if ensemble == 1:
-            ensemble = records
+        if ensemble not in (1, records):
+            # the gate's members turn the records' circle between the model's own points, which only
+            # works when both have as many points (else gate drops coincide with model drops)
+            raise InputError("ensemble", ensemble, f"1 or {records} with {records} records: the model runs as "
+                             "many drops per variant as there are records")
+        ensemble = records
     elif isinstance(measured, list):
         points = measured
     else:
@@ -704,7 +715,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                 produced = []  # a given gate (no members to tell what noise produces) is the only gate
             above = (current_gap > step_gate or bool(produced)) and best["score"] < base_score - 2.0
             own = None
-            if above and not relative and not (fixed and not broken) and noise_gap is None \
+            if above and records > 1 and not relative and not (fixed and not broken) and noise_gap is None \
                     and best.get("term") is not None and math.isfinite(best["gap"]):
                 # the candidate's own noise: where the true model's landing is itself chaotic (mu_rad
                 # 0.3 for 0.15 on the bench, with repeated records: the fit found 0.303, the gap only
@@ -716,7 +727,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                 own = (own_fixed, _noise_gate(sim, best["sims"], noise_members, sensor_noise_sigma, own_fixed,
                                               journals=journals))
                 noise_history.append(own[1]["gate"])
-            within_own = own is not None and best["gap"] <= own[1]["gate"]
+            # and the gap it started from is not itself inside that noise: a candidate that makes the
+            # landing wilder must not explain a gap by its own scatter
+            within_own = own is not None and best["gap"] <= own[1]["gate"] < current_gap
             significant = above and (relative or (bool(fixed) and not broken) or within_own)
             # the best of the other kind within 2 score units: the data do not tell them apart
             rival = next((r for r in results[1:] if r["kind"] != best["kind"] and math.isfinite(r["score"])), None)
@@ -1164,6 +1177,9 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
         if cli_names or not err.field.startswith("--"):
             raise
         raise InputError(err.field[2:].replace("-", "_"), err.value, err.allowed, file=err.file) from None
+    if isinstance(meas, Repeated) and ensemble not in (1, len(meas.features)):
+        raise InputError(opt("ensemble"), ensemble, f"1 or {len(meas.features)} with {len(meas.features)} records: "
+                         "the model runs as many drops per variant as there are records")
     journals = tuple(journals)
     if not journals or journals[0] != "DE" or any(j not in JOURNALS for j in journals) or len(set(journals)) < len(journals):
         raise InputError(opt("journals"), ",".join(journals), "DE, or DE,NDE (the whirl rows are the DE journal's)")
