@@ -30,7 +30,6 @@ import argparse
 import csv
 import io
 import json
-import math
 import sys
 import tempfile
 import time
@@ -140,6 +139,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
     from sensor_model import C, KNOWN_RIG, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
+    from rotorlanding.ensemble import random_drop_offset
 
     model = tmp / f"{case['case']}.toml"
     model.write_text(f'{KNOWN_RIG}\n[effects]\n' + "".join(f"{e} = false\n" for e in case["off"])
@@ -157,9 +157,8 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
         rng = np.random.default_rng(5000 + i)
         recs = []
         for k in range(repeats):
-            r, a = 5e-6 * float(np.sqrt(rng.uniform())), float(rng.uniform(0.0, 2.0 * np.pi))
             recs.append(tmp / f"{case['case']}_{k}.csv")
-            write_record(model, case["sets"] + [f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"], recs[-1],
+            write_record(model, case["sets"] + random_drop_offset(rng), recs[-1],
                          clearance=C, seed=sen["seed"] + 7919 * k, fs_hz=sen["fs_hz"],
                          pre_trigger_s=sen["pre_trigger_s"], drop_at_s=float(rng.uniform(0.5, 10.0)),
                          channels=sen["channels"], noise_by_channel=sen["noise_by_channel"])

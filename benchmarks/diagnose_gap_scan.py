@@ -36,12 +36,11 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
     """``records`` > 1: the "measurement" is that many records of repeated landings, each dropped
     from its own random point within 5 um (seeded), compared as their mean features (diagnose's
     ``Repeated``) with the model's ensembles (``ensemble`` drops of radius ``radius_m``)."""
-    import math
-
     import numpy as np
     from sensor_model import write_record
 
     from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis
+    from rotorlanding.ensemble import random_drop_offset
     from rotorlanding.features import ensemble_features
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -53,9 +52,8 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
         else:
             rng, feats = np.random.default_rng(3), []
             for k in range(records):
-                r, a = 5e-6 * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi)
-                write_record(model, [f"contact.mu_rad={truth!r}", f"amb.drop_offset_m=[{r * math.cos(a)!r}, "
-                                     f"{r * math.sin(a)!r}]"], Path(tmp) / f"rig{k}.csv", clearance=C, seed=3 + k)
+                write_record(model, [f"contact.mu_rad={truth!r}"] + random_drop_offset(rng), Path(tmp) / f"rig{k}.csv",
+                             clearance=C, seed=3 + k)
                 feats.append(measured_for_diagnosis(model, Path(tmp) / f"rig{k}.csv", [], None)[2])
             meas = ensemble_features(feats)
         out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m, "records": records}

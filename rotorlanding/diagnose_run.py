@@ -300,6 +300,17 @@ def records_for_diagnosis(scenario_path, paths, sets: list[str], option: str = "
     return clearance, first, Repeated(feats), {"sensor_noise": noise}
 
 
+def _records_ensemble(records: int, ensemble: int, option: str = "ensemble") -> int:
+    """The model's drops per variant with ``records`` repeated landings: as many as records
+    (``ensemble`` 1 or that number). The gate's members turn the records' circle between the
+    model's own points, which only works when both have as many points (else gate drops coincide
+    with model drops)."""
+    if ensemble not in (1, records):
+        raise InputError(option, ensemble, f"1 or {records} with {records} records: the model runs as many drops "
+                         "per variant as there are records")
+    return records
+
+
 #: the journals whose per-journal features diagnose compares by default (``--journals``): the DE
 #: only. The NDE's rows (features.OTHER_JOURNAL_ROWS) measured on the bench (docs/measured_data.md,
 #: session 13) are opt-in
@@ -602,12 +613,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
 
         records = len(measured.features)
         points = [Point("", [], ensemble_features(measured.features))]
-        if ensemble not in (1, records):
-            # the gate's members turn the records' circle between the model's own points, which only
-            # works when both have as many points (else gate drops coincide with model drops)
-            raise InputError("ensemble", ensemble, f"1 or {records} with {records} records: the model runs as "
-                             "many drops per variant as there are records")
-        ensemble = records
+        ensemble = _records_ensemble(records, ensemble)
     elif isinstance(measured, list):
         points = measured
     else:
@@ -1177,9 +1183,8 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
         if cli_names or not err.field.startswith("--"):
             raise
         raise InputError(err.field[2:].replace("-", "_"), err.value, err.allowed, file=err.file) from None
-    if isinstance(meas, Repeated) and ensemble not in (1, len(meas.features)):
-        raise InputError(opt("ensemble"), ensemble, f"1 or {len(meas.features)} with {len(meas.features)} records: "
-                         "the model runs as many drops per variant as there are records")
+    if isinstance(meas, Repeated):
+        _records_ensemble(len(meas.features), ensemble, opt("ensemble"))  # before any simulation
     journals = tuple(journals)
     if not journals or journals[0] != "DE" or any(j not in JOURNALS for j in journals) or len(set(journals)) < len(journals):
         raise InputError(opt("journals"), ",".join(journals), "DE, or DE,NDE (the whirl rows are the DE journal's)")

@@ -24,11 +24,19 @@ def drop_offsets(n: int, radius_m: float = DROP_RADIUS_M, phase: float = 0.0) ->
     the first at ``phase`` (a fraction of the spacing) from the +y axis."""
     if n < 1:
         raise ValueError(f"ensemble size must be >= 1, got {n}")
-    out = []
-    for k in range(n):
-        a = 2.0 * math.pi * (k + phase) / n
-        out.append([f"amb.drop_offset_m=[{radius_m * math.cos(a)!r}, {radius_m * math.sin(a)!r}]"])
-    return out
+    return [_offset(radius_m, 2.0 * math.pi * (k + phase) / n) for k in range(n)]
+
+
+def random_drop_offset(rng, radius_m: float = DROP_RADIUS_M) -> list[str]:
+    """The ``--set`` override of one drop from a random point of the disc of radius ``radius_m``
+    (uniform over its area; ``rng`` a numpy Generator, two draws: radius, then angle): a rig's
+    drop point within the AMB's position error, as repeated landings have them."""
+    return _offset(radius_m * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi))
+
+
+def _offset(r: float, a: float) -> list[str]:
+    r, a = float(r), float(a)
+    return [f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"]
 
 
 def member_result(summary: dict) -> dict:

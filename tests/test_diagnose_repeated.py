@@ -11,7 +11,7 @@ import pytest
 
 from rotorlanding.cli import main
 from rotorlanding.diagnose_run import Point, Repeated, _noise_gate, records_for_diagnosis, run_diagnose
-from rotorlanding.ensemble import drop_offsets
+from rotorlanding.ensemble import drop_offsets, random_drop_offset
 from rotorlanding.errors import InputError
 from rotorlanding.features import ensemble_features, gap
 
@@ -97,9 +97,8 @@ def _records(model, sets, tmp_path, n, seed):
     rng = np.random.default_rng(seed)
     paths = []
     for k in range(n):
-        r, a = 5e-6 * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi)
         paths.append(tmp_path / f"drop{k}.csv")
-        write_record(model, list(sets) + [f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"], paths[-1],
+        write_record(model, list(sets) + random_drop_offset(rng), paths[-1],
                      clearance=C, seed=seed + k, fs_hz=5000.0, drop_at_s=float(rng.uniform(1.0, 5.0)))
     return paths
 
