@@ -99,6 +99,27 @@ def _onset_note() -> str:
 #: the cases whose ensemble members the landing figure reads back (its representative drops); the
 #: other members keep only summary.json (a validate run wrote ~1.5 GB of results.h5 before)
 FIGURE_CASES = ("no_whirl", "backward_whirl", "forward_7000")
+#: the figures the report shows (issue 15, point 5), copied beside it so the published report is
+#: read with its figures, not with file names of a run folder the reader does not have:
+#: (file in the run folder, file beside the report, caption)
+GALLERY = (
+    ("forward_whirl_vs_speed.png", "forward_whirl_vs_speed.png",
+     "Fig. 39: forward-whirl frequency at the DE journal against speed, the paper's experiment and "
+     "simulation beside ours (ensemble medians)."),
+    ("landings_DE_displacement.png", "landings_DE_displacement.png",
+     "DE journal displacement of the no-whirl, backward-whirl (Table 1) and 7000 rpm forward-whirl "
+     "(Table 2) landings: each ensemble's representative drop (its onset nearest the median onset), "
+     "the radial clearance drawn, the last 50 ms zoomed."),
+    ("forward_7000/forces.png", "forward_7000_forces.png",
+     "7000 rpm combined landing (Table 2), centred drop: force on the rotor at each bearing, positive "
+     "up, the sign of the paper's tables."),
+    ("forward_7000/orbits.png", "forward_7000_orbits.png",
+     "7000 rpm combined landing, centred drop: journal orbits relative to the inner race with the "
+     "clearance circle (top) and absolute, in the housing frame (bottom; they include the race, "
+     "ball-set and ribbon deflection, so they run outside the clearance circle)."),
+    ("backward_whirl/orbits.png", "backward_whirl_orbits.png",
+     "Backward-whirl landing (Table 1), centred drop: orbits as above."),
+)
 
 
 def _run_case(args):
@@ -813,12 +834,73 @@ def report_markdown(result: dict) -> str:
               "drops; a verdict whose margin is smaller than its standard error is marked \"within noise\" (it may "
               "flip on another machine), never passed or failed silently.",
               "", "## Figures", ""]
+    lines += figure_lines(result)
+    return "\n".join(lines) + "\n"
+
+
+GALLERY_DIR = "validation_figures"
+
+
+def gallery_dir(report_name: str) -> str:
+    """The folder of the report's figures beside it: ``validation_figures`` for ``validation.md``,
+    ``validation_<rig>_figures`` for a rig overlay's report."""
+    return Path(report_name).stem + "_figures"
+
+
+def figure_lines(result: dict) -> list[str]:
+    """The report's figure section: the figures copied beside it (:func:`copy_gallery`) shown with
+    their captions, the run's other figures named."""
+    shown = result.get("gallery") or []
+    folder = result.get("gallery_dir", GALLERY_DIR)
+    lines = []
+    for name, caption in shown:
+        lines += [f"![{Path(name).stem.replace('_', ' ')}]({folder}/{name})", "", f"*{caption}*", ""]
     for f in result["figures"]:
-        lines.append(f"- `{f}`")
-    lines += ["", "Per case: `CASE/summary.json`, `CASE/results.h5` and its figures (displacements with the clearance, "
+        if f not in {g[0] for g in GALLERY}:
+            lines.append(f"- `{f}`")
+    lines += ["", f"The figures above are copies in `{folder}/` beside this report. Per case in the run folder: "
+              "`CASE/summary.json`, `CASE/results.h5` and its figures (displacements with the clearance, "
               "forces on the rotor, orbits relative to the inner race with the clearance circle, full spectrum, "
               "speeds, energy)."]
-    return "\n".join(lines) + "\n"
+    return lines
+
+
+def _write_small_png(src: Path, dst: Path) -> None:
+    """``src`` re-encoded with a 128-colour palette (Pillow, which matplotlib depends on): line plots
+    look the same at about 40 % of the bytes, so a republished report does not grow the repository
+    by 2 MB each time. Written and fsynced at ``dst``."""
+    from PIL import Image
+
+    with Image.open(src) as im:
+        small = im.convert("RGB").quantize(colors=128, method=Image.Quantize.MEDIANCUT)
+    with open(dst, "wb") as fh:
+        small.save(fh, format="PNG", optimize=True)
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def copy_gallery(out: Path, dest: Path) -> list[tuple[str, str]]:
+    """Copy the report's figures (:data:`GALLERY`) from the run folder ``out`` into ``dest``
+    (:func:`_write_small_png`), each written under a temporary name and renamed, so a kill leaves the old figure or the new one.
+    A figure the run did not make (a failed case) is left out of the report, not shown stale."""
+    from .safeio import fsync_dir, tmp_name
+    from .safeio import unlink_quietly as _unlink_quietly
+
+    dest.mkdir(parents=True, exist_ok=True)
+    shown = []
+    for src, name, caption in GALLERY:
+        if not (out / src).is_file():
+            continue
+        tmp = tmp_name(dest / name)
+        try:
+            _write_small_png(out / src, tmp)
+        except OSError:
+            _unlink_quietly(tmp)
+            raise
+        os.replace(tmp, dest / name)
+        shown.append((name, caption))
+    fsync_dir(dest)
+    return shown
 
 
 def plot_validation(result: dict, out: Path) -> list[str]:
@@ -938,11 +1020,16 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     result["ribbon_modal"] = ribbon_modal_shift(rig)
     result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig))
     result["figures"] = plot_validation(result, out)
+    name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
+    # the report names its figure folder after its published name, in the run folder as well, so
+    # the same text reads right in both places
+    result["gallery_dir"] = gallery_dir(name)
+    result["gallery"] = copy_gallery(out, out / result["gallery_dir"])
     atomic_write_text(out / "validation.json", json.dumps(result, indent=2, default=float))
     md = report_markdown(result)
     atomic_write_text(out / "validation.md", md)
     if publish is not None:
-        name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
+        copy_gallery(out, Path(publish) / result["gallery_dir"])
         atomic_write_text(Path(publish) / name, md)
     return result
 

@@ -350,3 +350,46 @@ def test_holdout_sets_read_the_landing_fit_before_the_modal_fit(tmp_path, monkey
     for rpm in (3000, 7000, 10000):
         sets = v._holdout_sets(rpm)
         assert sets and all(s.startswith(("rotor.sections.3.outer_diameter=", "rotor.disks.4.outer_diameter=")) for s in sets)
+
+
+def test_report_figures_are_copied_beside_the_report_and_shown(tmp_path):
+    # the published report shows its figures from a folder beside it (issue 15, point 5), not file
+    # names of a run folder the reader does not have; a figure the run did not make is left out
+    from rotorlanding.validate import GALLERY, copy_gallery, figure_lines, gallery_dir
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from PIL import Image
+
+    out = tmp_path / "run"
+    made = GALLERY[:-1]  # the backward orbits "failed"
+    for k, (src, _, _) in enumerate(made):
+        (out / src).parent.mkdir(parents=True, exist_ok=True)
+        f, ax = plt.subplots(figsize=(3, 2))
+        ax.plot([0, 1], [0, k + 1], label=src)
+        ax.legend()
+        f.savefig(out / src, dpi=60)
+        plt.close(f)
+    folder = gallery_dir("validation.md")
+    assert folder == "validation_figures" and gallery_dir("validation_rig_rotor_first.md") == \
+        "validation_rig_rotor_first_figures"
+    (tmp_path / "docs" / folder).mkdir(parents=True)
+    (tmp_path / "docs" / folder / GALLERY[0][1]).write_bytes(b"old")
+    shown = copy_gallery(out, tmp_path / "docs" / folder)
+    assert [n for n, _ in shown] == [g[1] for g in made]
+    for src, name, _ in made:
+        with Image.open(out / src) as a, Image.open(tmp_path / "docs" / folder / name) as b:
+            assert a.size == b.size
+            # the palette copy keeps the picture: mean colour difference well under one grey level
+            diff = np.abs(np.asarray(a.convert("RGB"), float) - np.asarray(b.convert("RGB"), float))
+            assert diff.mean() < 1.0, (name, diff.mean())
+    assert not (tmp_path / "docs" / folder / GALLERY[-1][1]).exists()
+    assert not [p for p in (tmp_path / "docs" / folder).iterdir() if p.name.startswith(".")]  # no temporaries
+
+    section = "\n".join(figure_lines({"figures": [g[0] for g in GALLERY[:2]] + ["extra.png"], "gallery": shown,
+                                       "gallery_dir": folder}))
+    for name, caption in shown:
+        assert f"]({folder}/{name})" in section and f"*{caption}*" in section
+    assert "- `extra.png`" in section and "- `forward_whirl_vs_speed.png`" not in section
