@@ -520,6 +520,34 @@ def _refit(sim: _Simulator, terms: list[Term], maxiter: int, start: dict) -> dic
     return best
 
 
+def above_gate(current_gap: float, gate: float, produced: list, score: float, base_score: float) -> bool:
+    """A step's best candidate is considered at all when the gap it starts from is above the noise
+    gate (or it produces a feature the data show and noise cannot) and its score beats the model
+    as it is by more than 2 units (the score charges each added freedom log n)."""
+    return (current_gap > gate or bool(produced)) and score < base_score - 2.0
+
+
+def named_by(above: bool, relative: bool, direction_fixed: bool, best_gap: float, own_gate: float | None,
+             current_gap: float, gate: float) -> str | None:
+    """Why a step's best candidate is named, or None. Beyond :func:`above_gate`, one of: the gap
+    falls by ``MIN_STEP_IMPROVEMENT`` or more; the candidate makes a whirl direction right and
+    breaks none; or (repeated records only: ``own_gate`` is None otherwise) what it leaves is
+    inside its own noise gate, and that gate is below the gap it started from, so a candidate that
+    makes the landing wilder cannot explain a gap by its own scatter."""
+    if not above:
+        return None
+    within_own = own_gate is not None and best_gap <= own_gate < current_gap
+    if relative:
+        why = "relative improvement"
+    elif direction_fixed:
+        why = "whirl direction"
+    elif within_own:
+        why = "the remainder inside the candidate's own noise gate"
+    else:
+        return None
+    return why + ("" if current_gap > gate else ", a feature noise cannot produce")
+
+
 def whirl_direction_fixed(points, measured, before, after, noise_directions) -> tuple[list[str], list[str]]:
     """Points where a candidate makes the whirl direction right (measured, not before, after), and
     those of them where some off-centre drop of the noise gate (``noise_directions``: per member,
@@ -719,7 +747,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             produced = sorted(noise_cannot - set(_absent_in_model(best.get("rows", []))))
             if not math.isfinite(best["gap"]) or not noise["member_gaps"]:
                 produced = []  # a given gate (no members to tell what noise produces) is the only gate
-            above = (current_gap > step_gate or bool(produced)) and best["score"] < base_score - 2.0
+            above = above_gate(current_gap, step_gate, produced, best["score"], base_score)
             own = None
             if above and records > 1 and not relative and not (fixed and not broken) and noise_gap is None \
                     and best.get("term") is not None and math.isfinite(best["gap"]):
@@ -733,10 +761,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                 own = (own_fixed, _noise_gate(sim, best["sims"], noise_members, sensor_noise_sigma, own_fixed,
                                               journals=journals))
                 noise_history.append(own[1]["gate"])
-            # and the gap it started from is not itself inside that noise: a candidate that makes the
-            # landing wilder must not explain a gap by its own scatter
-            within_own = own is not None and best["gap"] <= own[1]["gate"] < current_gap
-            significant = above and (relative or (bool(fixed) and not broken) or within_own)
+            significant_by = named_by(above, relative, bool(fixed) and not broken, best["gap"],
+                                      own[1]["gate"] if own else None, current_gap, step_gate)
+            significant = significant_by is not None
             # the best of the other kind within 2 score units: the data do not tell them apart
             rival = next((r for r in results[1:] if r["kind"] != best["kind"] and math.isfinite(r["score"])), None)
             keys = ("effect", "kind", "gap", "parameters", "from", "bound", "score", "directions", "evaluations",
@@ -754,11 +781,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                           "indistinguishable_from": rival["effect"] if rival and significant
                           and rival["score"] < best["score"] + 2.0 else None,
                           "gate": step_gate, "own_gate": own[1]["gate"] if own else None,
-                          "significant_by": (("relative improvement" if relative else
-                                              "whirl direction" if fixed and not broken else
-                                              "the remainder inside the candidate's own noise gate")
-                                             + ("" if current_gap > step_gate else ", a feature noise cannot produce"))
-                          if significant else None})
+                          "significant_by": significant_by})
             if not significant:
                 break
             if "refit_terms" in best:

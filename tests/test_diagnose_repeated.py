@@ -141,3 +141,33 @@ def test_repeated_records_bad_input_one_line(rig_without_windage, tmp_path, caps
                  "--ensemble", "3", "--out", str(tmp_path / "o2")])
     line = capsys.readouterr().err.strip()
     assert code != 0 and "--ensemble" in line and "1 or 2 with 2 records" in line and "\n" not in line
+
+
+def test_naming_rule_own_gate_and_its_guards():
+    """The step's naming rule on its own (diagnose_run.named_by / above_gate): the own-gate reason
+    names a candidate only when what it leaves is inside its own gate and that gate is below the gap
+    it started from; one record (no own gate) keeps the old rule."""
+    from rotorlanding.diagnose_run import above_gate, named_by
+
+    # considered at all: above the gate and 2 score units better; or a feature noise cannot produce
+    assert above_gate(0.5, 0.3, [], -10.0, -7.9) and not above_gate(0.5, 0.3, [], -10.0, -8.1)
+    assert not above_gate(0.2, 0.3, [], -10.0, -5.0)
+    assert above_gate(0.2, 0.3, ["DE_race_spinup_s"], -10.0, -5.0)
+    # the reasons, in order; nothing named when not above the gate whatever the improvement
+    assert named_by(True, True, False, 0.3, None, 1.0, 0.2) == "relative improvement"
+    assert named_by(True, False, True, 0.9, None, 1.0, 0.2) == "whirl direction"
+    assert named_by(False, True, True, 0.1, 0.5, 1.0, 0.2) is None
+    # bench case param_mu_rad_0.3 with 4 records: gap 1.59 -> 1.21 (24 %, not relative), its own gate 1.43
+    assert named_by(True, False, False, 1.21, 1.43, 1.59, 0.16) == \
+        "the remainder inside the candidate's own noise gate"
+    # a wilder candidate: its own gate is not below the gap it started from, so its scatter
+    # cannot be what explains that gap
+    assert named_by(True, False, False, 1.21, 1.59, 1.59, 0.16) is None
+    assert named_by(True, False, False, 1.21, 2.0, 1.59, 0.16) is None
+    # what is left is outside the candidate's own noise
+    assert named_by(True, False, False, 1.5, 1.43, 1.59, 0.16) is None
+    # one record: no own gate, the old rule (relative or direction only)
+    assert named_by(True, False, False, 1.21, None, 1.59, 0.16) is None
+    # named below the gate only through a feature noise cannot produce, and the reason says so
+    assert named_by(True, True, False, 0.05, None, 0.25, 0.3) == \
+        "relative improvement, a feature noise cannot produce"
