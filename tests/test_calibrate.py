@@ -68,6 +68,10 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     row = next(csv.DictReader(open(tmp_path / "c" / "calibration.csv")))
     assert "fw7000_direction" not in row and 0.0 <= float(row["bw_fraction"]) <= 1.0
     assert row["bw_direction"] in ("none", "backward", "forward")
+    # what the score leaves out is recorded (docs/studies/backward_frequency_only.py): the drops'
+    # median DE vertical range, the journal below the centre after the drop and within 2 mm
+    lo, hi = float(row["bw_v_disp_min_m"]), float(row["bw_v_disp_max_m"])
+    assert -2e-3 < lo < -1e-4 and lo < hi < 2e-3
     bad = tmp_path / "bad.toml"
     bad.write_text('cases = ["fw9000"]\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.2}\n')
     assert main(["calibrate", str(bad)]) == 2
