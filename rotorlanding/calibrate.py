@@ -257,7 +257,7 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
                          "bw_persistence": results[i]["bw"].get("persistence")} if "bw" in cases else {}),
                      # what the score leaves out, recorded so a study can ask what a fit to some of
                      # Table 1 predicts of the rest (docs/studies/backward_frequency_only.py)
-                     **({"bw_hz_se": results[i]["bw"].get("frequency_se_hz"),
+                     **({"bw_se_hz": results[i]["bw"].get("frequency_se_hz"),
                          "bw_onset_se_s": results[i]["bw"].get("onset_se_s"),
                          "bw_v_disp_min_m": (results[i]["bw"].get("v_disp_range_m") or [None, None])[0],
                          "bw_v_disp_max_m": (results[i]["bw"].get("v_disp_range_m") or [None, None])[1]}

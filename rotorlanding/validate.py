@@ -108,8 +108,9 @@ GALLERY = (
      "simulation beside ours (ensemble medians)."),
     ("landings_DE_displacement.png", "landings_DE_displacement.png",
      "DE journal displacement of the no-whirl, backward-whirl (Table 1) and 7000 rpm forward-whirl "
-     "(Table 2) landings: each ensemble's representative drop (its onset nearest the median onset), "
-     "the radial clearance drawn, the last 50 ms zoomed."),
+     "(Table 2) landings: each ensemble's representative drop (of a whirling ensemble the drop whose "
+     "onset is nearest the median onset, of the calm one the drop whose peak displacement is nearest "
+     "the median), the radial clearance drawn, the last 50 ms zoomed."),
     ("forward_7000/forces.png", "forward_7000_forces.png",
      "7000 rpm combined landing (Table 2), centred drop: force on the rotor at each bearing, positive "
      "up, the sign of the paper's tables."),
@@ -838,9 +839,6 @@ def report_markdown(result: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-GALLERY_DIR = "validation_figures"
-
-
 def gallery_dir(report_name: str) -> str:
     """The folder of the report's figures beside it: ``validation_figures`` for ``validation.md``,
     ``validation_<rig>_figures`` for a rig overlay's report."""
@@ -851,14 +849,13 @@ def figure_lines(result: dict) -> list[str]:
     """The report's figure section: the figures copied beside it (:func:`copy_gallery`) shown with
     their captions, the run's other figures named."""
     shown = result.get("gallery") or []
-    folder = result.get("gallery_dir", GALLERY_DIR)
+    folder = result.get("gallery_dir") or gallery_dir("validation.md")
     lines = []
     for name, caption in shown:
         lines += [f"![{Path(name).stem.replace('_', ' ')}]({folder}/{name})", "", f"*{caption}*", ""]
-    for f in result["figures"]:
-        if f not in {g[0] for g in GALLERY}:
-            lines.append(f"- `{f}`")
-    lines += ["", f"The figures above are copies in `{folder}/` beside this report. Per case in the run folder: "
+    others = [f"- `{f}`" for f in result["figures"] if f not in {g[0] for g in GALLERY}]
+    lines += others + ([""] if others else [])
+    lines += [f"The figures above are copies in `{folder}/` beside this report. Per case in the run folder: "
               "`CASE/summary.json`, `CASE/results.h5` and its figures (displacements with the clearance, "
               "forces on the rotor, orbits relative to the inner race with the clearance circle, full spectrum, "
               "speeds, energy)."]
@@ -872,7 +869,8 @@ def _write_small_png(src: Path, dst: Path) -> None:
     from PIL import Image
 
     with Image.open(src) as im:
-        small = im.convert("RGB").quantize(colors=128, method=Image.Quantize.MEDIANCUT)
+        # Image.Quantize is Pillow >= 9.1; the plain constant works on every Pillow matplotlib accepts
+        small = im.convert("RGB").quantize(colors=128, method=getattr(Image, "Quantize", Image).MEDIANCUT)
     with open(dst, "wb") as fh:
         small.save(fh, format="PNG", optimize=True)
         fh.flush()
@@ -894,7 +892,7 @@ def copy_gallery(out: Path, dest: Path) -> list[tuple[str, str]]:
         tmp = tmp_name(dest / name)
         try:
             _write_small_png(out / src, tmp)
-        except OSError:
+        except BaseException:  # a Pillow error as much as a full disk: no hidden temporary left behind
             _unlink_quietly(tmp)
             raise
         os.replace(tmp, dest / name)

@@ -19,6 +19,7 @@ import statistics
 import sys
 from pathlib import Path
 
+from rotorlanding.safeio import atomic_write_text
 from rotorlanding.validate import CLASS_SHARE, _paper_values, band
 
 ROWS = (("onset_s", "bw_onset_s", "onset", "s", 1.0),
@@ -41,7 +42,16 @@ def admissible(rows: list[dict]) -> tuple[list[dict], float, float]:
 
 
 def study(out_dir) -> dict:
-    rows = list(csv.DictReader(open(Path(out_dir) / "calibration.csv", encoding="utf-8")))
+    path = Path(out_dir) / "calibration.csv"
+    if not path.is_file():
+        raise SystemExit(f"{path}: not found: give the --out folder of `rotorlanding calibrate "
+                         "scenarios/calibration/worn_bearing.toml`")
+    with open(path, encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    missing = [c for _, c, *_ in ROWS if rows and c not in rows[0]]
+    if missing:
+        print(f"{path}: no column {', '.join(missing)} (a calibration from before session 18): those rows are left out",
+              file=sys.stderr)
     keep, f_exp, f_band = admissible(rows)
     if not keep:
         raise SystemExit(f"{out_dir}/calibration.csv: no design whirls backward inside {f_exp} +/- {f_band} Hz")
@@ -83,7 +93,7 @@ def main(argv=None) -> int:
         print(f"| {r['label']} [{r['unit']}] | {r['experimental']:.3g} | {r['band']:.2g} | {fo} | "
               f"{r['min']:.3g} / {r['median']:.3g} / {r['max']:.3g} | {r['inside_band']} of {r['of']} |")
     if a.json:
-        Path(a.json).write_text(json.dumps(res, indent=2))
+        atomic_write_text(Path(a.json), json.dumps(res, indent=2))
     return 0
 
 
