@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import csv
 import functools
+import io
 import json
 import math
 from pathlib import Path
@@ -47,6 +48,7 @@ from .config import override_table, range_spec, sample_ranges, study_file
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .runner import reduction_cache, run_all, warm_model
+from .safeio import atomic_write_text
 from .validate import paper, paper_dir
 
 #: s, the onset change between steps h and h/2 that an ensemble may show without its noise
@@ -286,10 +288,12 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     for r in rows:
         keys += [k for k in r if k not in keys]
     rows = [{k: r.get(k) for k in keys} for r in rows]
-    with open(out / "calibration.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    (out / "calibration.json").write_text(json.dumps({"space": str(space_path), "designs": rows}, indent=2,
-                                                    default=float))
+    # written whole under a temporary name and renamed: a kill leaves the previous table or this one
+    buf = io.StringIO(newline="")
+    w = csv.DictWriter(buf, fieldnames=list(rows[0]))
+    w.writeheader()
+    w.writerows(rows)
+    atomic_write_text(out / "calibration.csv", buf.getvalue())
+    atomic_write_text(out / "calibration.json", json.dumps({"space": str(space_path), "designs": rows}, indent=2,
+                                                           default=float))
     return rows
