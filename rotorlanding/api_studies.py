@@ -27,7 +27,7 @@ import numpy as np
 
 from .api import Scenario, _override_items, _SeriesResults, _toml_dump
 from .errors import InputError
-from .safeio import atomic_write_text
+from .safeio import atomic_write_text, save_figure
 
 __all__ = ["Coastdown", "coastdown", "Sweep", "sweep", "Diagnosis", "diagnose"]
 
@@ -181,7 +181,7 @@ class Coastdown(_SeriesResults):
         ax.set_title(f"{self.summary.get('scenario', '')}: coast-down speeds "
                      f"({self.summary.get('stop_reason', '')})", fontsize=10)
         fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        save_figure(fig, path, dpi=120)
         plt.close(fig)
         return path
 

@@ -71,7 +71,7 @@ from .mechanisms import carried_series, dissipation_entries, retuned_spec, rotor
 from .postprocess import energy_summary, evaluate, uniform
 from .results import (CUMULATIVE_PREFIXES, Checkpoint, Store, check_resumable, create_file, read_restart, repack,
                       verify_checkpoint)
-from .safeio import WriteError, atomic_write_text, check_out_dir, fault
+from .safeio import WriteError, atomic_write_text, check_out_dir, fault, save_figure
 from .scenario import Scenario, scenario_from_dict
 from .thermal_feedback import first_runaway
 from .thermal_states import file_summary as thermal_file_summary, format_lines as format_thermal
@@ -641,7 +641,7 @@ def plot_coastdown(h5_path: Path, png: Path) -> Path:
     axes[2].grid(alpha=0.3)
     fig.suptitle(f"{name}: coast-down")
     fig.tight_layout()
-    fig.savefig(png, dpi=110)
+    save_figure(fig, png, dpi=110)
     plt.close(fig)
     return png
 

@@ -47,7 +47,7 @@ from .features import ABSENT_FEATURE_DISTANCE, JOURNALS, extract_features, gap_p
 from .measured import Measurement
 from .mechanisms import rotor_force
 from .runner import Pool, reduction_cache
-from .safeio import atomic_write_text
+from .safeio import atomic_write_text, save_figure
 
 #: the noise gate is estimated (:func:`_noise_gate`); this is its floor: on clean data (the
 #: model against its own resampled, noisy output) the gap is 0.03-0.1
@@ -976,7 +976,7 @@ def _feature_figure(res: dict, path) -> None:
     axes[0, 0].set_title(f"gap {res['gap_before']:.3f} -> {res['gap_after']:.3f}; named: {res['named_effect']}",
                          fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=100)
+    save_figure(fig, path, dpi=100)
     plt.close(fig)
 
 
@@ -1018,7 +1018,7 @@ def _overlay_figure(res: dict, path, measured: Measurement, scenario_path, clear
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 

@@ -25,6 +25,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
+from .safeio import save_figure
 import scipy.linalg as sla
 
 from .blas import blas_threads
@@ -166,7 +168,7 @@ def plot_campbell(results: list[ModalResult], path, *, title: str = "Campbell di
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=8, framealpha=0.9)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return path
 

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .mechanisms import rotor_force
+from .safeio import save_figure
 from .postprocess import uniform
 from .whirl import full_spectrum
 
@@ -47,7 +48,7 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
     def save(fig, fname):
         fig.tight_layout()
         files.append(out / fname)
-        fig.savefig(files[-1], dpi=110)
+        save_figure(fig, files[-1], dpi=110)
         plt.close(fig)
 
     def time_histories(curves, ylabel, suptitle, fname, band=None):

@@ -221,6 +221,24 @@ def atomic_write_text(path, text: str) -> None:
     fsync_dir(path.parent)
 
 
+def save_figure(fig, path, **savefig_kw) -> Path:
+    """Save a matplotlib figure atomically: rendered under a temporary name beside ``path`` (its
+    format from ``path``'s suffix), fsynced and renamed, so a kill or a full disk leaves the
+    previous picture or the new one, never a truncated PNG. Returns ``path``."""
+    path = Path(path)
+    tmp = tmp_name(path, "part")
+    try:
+        fig.savefig(tmp, format=path.suffix.lstrip(".") or "png", **savefig_kw)
+        fsync_path(tmp)
+        fault("figure")
+        os.replace(tmp, path)
+    except BaseException:
+        _unlink(tmp)
+        raise
+    fsync_dir(path.parent)
+    return path
+
+
 def copy_file(src, dst, *, point: str | None = None, chunk: int | None = None) -> None:
     """Copy ``src`` to ``dst`` and fsync it (``point``: a fault point halfway through the copy)."""
     size = os.path.getsize(src)

@@ -58,7 +58,7 @@ import numpy as np
 from .config import override_table, range_spec, sample_ranges, study_file, value_list
 from .errors import InputError
 from .runner import ReductionCache, executor, reduction_cache, worker_setup
-from .safeio import atomic_write_text
+from .safeio import atomic_write_text, save_figure
 from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
@@ -396,7 +396,7 @@ def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
         ax.legend(fontsize=8)
         ax.set_title(title, fontsize=10)
         fig.tight_layout()
-        fig.savefig(path, dpi=110)
+        save_figure(fig, path, dpi=110)
         plt.close(fig)
         return
     classes = list(WHIRL_STYLE)
@@ -447,5 +447,5 @@ def plot_whirl_map(rows: list[dict], keys: list[str], path) -> None:
         ax2.legend(fontsize=8)
     ax2.set_title("whirl frequency (a missing point: no whirl there)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)

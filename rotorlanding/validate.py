@@ -26,7 +26,7 @@ from pathlib import Path
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .runner import run_all, warm_model
-from .safeio import atomic_write_text
+from .safeio import atomic_write_text, save_figure
 
 
 def project_root() -> Path:
@@ -929,7 +929,7 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     ax.set_title("Forward-whirl frequency vs speed")
     f.tight_layout()
     files.append("forward_whirl_vs_speed.png")
-    f.savefig(out / files[-1], dpi=110)
+    save_figure(f, out / files[-1], dpi=110)
     plt.close(f)
     # DE vertical and horizontal displacement of the three landings, with zooms: the representative
     # drop of each ensemble, with the radial clearance drawn
@@ -964,7 +964,7 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     f.suptitle("DE journal displacement (absolute; the clearance bounds it relative to the inner race)", fontsize=10)
     f.tight_layout()
     files.append("landings_DE_displacement.png")
-    f.savefig(out / files[-1], dpi=110)
+    save_figure(f, out / files[-1], dpi=110)
     plt.close(f)
     return files
 

@@ -46,7 +46,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -57,7 +56,7 @@ from user_forces.fatigue import allowable_drops, overrolling_damage, rainflow_da
     stress_life_from_rating
 
 from .limits import KELVIN_0C, SOURCES, Limits, limits_from_dict
-from .safeio import atomic_write_text, tmp_name, unlink_quietly
+from .safeio import atomic_write_text, save_figure
 from .whirl import longest_whirl
 
 _BALL_LOADS = None
@@ -394,13 +393,10 @@ def plot_temperatures(spec, t, s, png: Path) -> Path:
             ax.grid(alpha=0.3)
             ax.legend(fontsize=7)
     fig.tight_layout()
-    tmp = tmp_name(png, "part")
     try:
-        fig.savefig(tmp, dpi=100, format="png")
-        os.replace(tmp, png)
+        save_figure(fig, png, dpi=100)
     finally:
         plt.close(fig)
-        unlink_quietly(tmp)
     return png
 
 

@@ -43,7 +43,7 @@ from .config import override_table, study_file, value_list
 from .ensemble import DROP_RADIUS_M, drop_offsets
 from .errors import InputError
 from .runner import Failure, reduction_cache, run_all, warm_model
-from .safeio import atomic_write_text, check_out_dir
+from .safeio import atomic_write_text, check_out_dir, save_figure
 
 CLASSES = ("none", "forward", "backward", "failed")
 
@@ -179,9 +179,7 @@ def _csv(table: list[dict], kx: str, ky: str) -> str:
 def plot_map(report: dict, path) -> None:
     """One panel per class (failed only when a drop failed): its probability per cell over the two
     keys (cells in index order, labelled with the values); forward/backward cells annotated with
-    the median whirl frequency. Written atomically (temporary name, then renamed)."""
-    import os
-
+    the median whirl frequency. Written atomically (:func:`rotorlanding.safeio.save_figure`)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -220,10 +218,7 @@ def plot_map(report: dict, path) -> None:
     fig.suptitle(f"whirl class per cell, {report['drops_per_cell']} drops each "
                  f"({report['drop_radius_m'] * 1e6:g} um circle); frequency: median of that class", fontsize=9)
     path = Path(path)
-    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}.png")
     try:
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, path)
+        save_figure(fig, path, dpi=110)
     finally:
         plt.close(fig)
-        tmp.unlink(missing_ok=True)
