@@ -17,7 +17,7 @@ import numpy as np
 
 from . import __version__
 from .errors import InputError
-from .safeio import WriteError, hard_exit, poisoned
+from .safeio import WriteError, check_out_dir, hard_exit, poisoned
 
 EXIT_INPUT = 2
 EXIT_IO = 3  # a result could not be written (disk full, I/O error); the input was fine
@@ -231,7 +231,6 @@ def cmd_verdict(args) -> int:
         print(format_summary(summary))
         results = out / "results.h5"
         overrides = []  # already in the stored scenario
-    from .safeio import check_out_dir
 
     check_out_dir(out)
     v = verdict_from_results(results, out, overrides=overrides, plots=not args.no_plots)
@@ -250,6 +249,10 @@ def cmd_validate(args) -> int:
         raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
     if args.publish is not None and not Path(args.publish).is_dir():
         raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
+    # both folders checked before 190 landings are run into them: a bad one is one line, now
+    check_out_dir(args.out, "--out")
+    if args.publish is not None:
+        check_out_dir(args.publish, "--publish")
     res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig, publish=args.publish,
                    sets=args.sets)
     ev = res["evaluation"]

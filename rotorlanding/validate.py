@@ -26,7 +26,7 @@ from pathlib import Path
 from .ensemble import drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .runner import run_all, warm_model
-from .safeio import atomic_write_text, save_figure
+from .safeio import WriteError, atomic_write_text, save_figure
 
 
 def project_root() -> Path:
@@ -1017,6 +1017,15 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
                                       for k, v in summaries.items()}}}
     result["ribbon_modal"] = ribbon_modal_shift(rig)
     result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig))
+    try:
+        _write_report(result, out, rig, publish)
+    except OSError as exc:  # a full disk or a folder gone read-only: one line, not a traceback
+        raise WriteError(getattr(exc, "filename", None) or out, exc) from None
+    return result
+
+
+def _write_report(result: dict, out: Path, rig, publish) -> None:
+    """The figures, validation.json and the report into ``out`` (and ``publish``), each atomically."""
     result["figures"] = plot_validation(result, out)
     name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
     # the report names its figure folder after its published name, in the run folder as well, so
@@ -1029,6 +1038,5 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     if publish is not None:
         copy_gallery(out, Path(publish) / result["gallery_dir"])
         atomic_write_text(Path(publish) / name, md)
-    return result
 
 

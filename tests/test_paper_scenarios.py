@@ -393,3 +393,33 @@ def test_report_figures_are_copied_beside_the_report_and_shown(tmp_path):
     for name, caption in shown:
         assert f"]({folder}/{name})" in section and f"*{caption}*" in section
     assert "- `extra.png`" in section and "- `forward_whirl_vs_speed.png`" not in section
+
+
+def test_validate_write_failures_are_one_line(monkeypatch, tmp_path, capsys):
+    # an --out that is a file is refused before any landing; a full disk while the report is
+    # written is one line naming the file and the reason (exit 3), not a traceback
+    import errno
+
+    import rotorlanding.validate as V
+
+    def no_landings(*a, **k):
+        raise AssertionError("no landing may run")
+
+    monkeypatch.setattr(V, "run_all", no_landings)
+    (tmp_path / "v").write_text("a file")
+    assert main(["validate", "--out", str(tmp_path / "v")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--out" in err and "not a folder" in err and "\n" not in err
+
+    monkeypatch.setattr(V, "run_all", lambda *a, **k: [])
+    monkeypatch.setattr(V, "ribbon_modal_shift", lambda rig: None)
+    monkeypatch.setattr(V, "evaluate_cases", lambda *a: {"checks": []})
+    monkeypatch.setattr(V, "counts_line", lambda ev: "")
+
+    def full_disk(result, out):
+        raise OSError(errno.ENOSPC, "No space left on device", str(out / "forward_whirl_vs_speed.png"))
+
+    monkeypatch.setattr(V, "plot_validation", full_disk)
+    assert main(["validate", "--out", str(tmp_path / "w")]) == 3
+    err = capsys.readouterr().err.strip()
+    assert "forward_whirl_vs_speed.png" in err and "No space left on device" in err and "\n" not in err
