@@ -204,39 +204,36 @@ def tmp_name(path: Path, tag: str = "tmp") -> Path:
     return path.with_name(f".{path.name}.{tag}")
 
 
-def atomic_write_text(path, text: str) -> None:
-    """Write ``text`` to ``path`` atomically (temp name, flush, fsync, os.replace, fsync dir)."""
+def write_atomically(path, write, *, tag: str = "tmp", point: str | None = None) -> Path:
+    """The one write-then-rename of the project: ``write(tmp)`` fills a temporary file beside
+    ``path`` (:func:`tmp_name`), which is fsynced and renamed onto ``path``, so a kill or a full
+    disk leaves the previous file or the new one, never a mix; on any failure the temporary is
+    removed. ``point``: a fault point between the fsync and the rename (kill tests)."""
     path = Path(path)
-    tmp = tmp_name(path)
+    tmp = tmp_name(path, tag)
     try:
-        with open(tmp, "w", encoding="utf-8") as fh:
-            fh.write(text)
-            fh.flush()
-            os.fsync(fh.fileno())
-        fault("summary-json")
-        os.replace(tmp, path)
-    except OSError:
-        _unlink(tmp)
-        raise
-    fsync_dir(path.parent)
-
-
-def save_figure(fig, path, **savefig_kw) -> Path:
-    """Save a matplotlib figure atomically: rendered under a temporary name beside ``path`` (its
-    format from ``path``'s suffix), fsynced and renamed, so a kill or a full disk leaves the
-    previous picture or the new one, never a truncated PNG. Returns ``path``."""
-    path = Path(path)
-    tmp = tmp_name(path, "part")
-    try:
-        fig.savefig(tmp, format=path.suffix.lstrip(".") or "png", **savefig_kw)
+        write(tmp)
         fsync_path(tmp)
-        fault("figure")
+        if point:
+            fault(point)
         os.replace(tmp, path)
     except BaseException:
         _unlink(tmp)
         raise
     fsync_dir(path.parent)
     return path
+
+
+def atomic_write_text(path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically (:func:`write_atomically`)."""
+    write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"), point="summary-json")
+
+
+def save_figure(fig, path, **savefig_kw) -> Path:
+    """Save a matplotlib figure atomically (:func:`write_atomically`), its format from ``path``'s
+    suffix: a kill or a full disk leaves the previous picture or the new one, never a truncated PNG."""
+    fmt = Path(path).suffix.lstrip(".") or "png"
+    return write_atomically(path, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw), tag="part", point="figure")
 
 
 def copy_file(src, dst, *, point: str | None = None, chunk: int | None = None) -> None:

@@ -863,41 +863,29 @@ def figure_lines(result: dict) -> list[str]:
 
 
 def _write_small_png(src: Path, dst: Path) -> None:
-    """``src`` re-encoded with a 128-colour palette (Pillow, which matplotlib depends on): line plots
-    look the same at about 40 % of the bytes, so a republished report does not grow the repository
-    by 2 MB each time. Written and fsynced at ``dst``."""
+    """``src`` re-encoded at ``dst`` with a 128-colour palette (Pillow, which matplotlib depends
+    on): line plots look the same at about 40 % of the bytes, so a republished report does not
+    grow the repository by 2 MB each time."""
     from PIL import Image
 
     with Image.open(src) as im:
         # Image.Quantize is Pillow >= 9.1; the plain constant works on every Pillow matplotlib accepts
         small = im.convert("RGB").quantize(colors=128, method=getattr(Image, "Quantize", Image).MEDIANCUT)
-    with open(dst, "wb") as fh:
-        small.save(fh, format="PNG", optimize=True)
-        fh.flush()
-        os.fsync(fh.fileno())
+    small.save(dst, format="PNG", optimize=True)
 
 
 def copy_gallery(out: Path, dest: Path) -> list[tuple[str, str]]:
     """Copy the report's figures (:data:`GALLERY`) from the run folder ``out`` into ``dest``
-    (:func:`_write_small_png`), each written under a temporary name and renamed, so a kill leaves the old figure or the new one.
-    A figure the run did not make (a failed case) is left out of the report, not shown stale."""
-    from .safeio import fsync_dir, tmp_name
-    from .safeio import unlink_quietly as _unlink_quietly
+    (:func:`_write_small_png`, each through :func:`rotorlanding.safeio.write_atomically`). A figure
+    the run did not make (a failed case) is left out of the report, not shown stale."""
+    from .safeio import write_atomically
 
     dest.mkdir(parents=True, exist_ok=True)
     shown = []
     for src, name, caption in GALLERY:
-        if not (out / src).is_file():
-            continue
-        tmp = tmp_name(dest / name)
-        try:
-            _write_small_png(out / src, tmp)
-        except BaseException:  # a Pillow error as much as a full disk: no hidden temporary left behind
-            _unlink_quietly(tmp)
-            raise
-        os.replace(tmp, dest / name)
-        shown.append((name, caption))
-    fsync_dir(dest)
+        if (out / src).is_file():
+            write_atomically(dest / name, functools.partial(_write_small_png, out / src))
+            shown.append((name, caption))
     return shown
 
 
