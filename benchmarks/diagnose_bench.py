@@ -40,8 +40,6 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-THRUST = "[axial]\nf_thrust = 4000.0\n[amb]\ndrop_axial = true\n"
-
 
 def _case(name, kind, off, truth_sets, truth, thrust=False, max_effects=1):
     """``off``: effects the model lacks; ``truth_sets``: the overrides that make the rig; ``truth``:
@@ -136,14 +134,12 @@ def judge(case: dict, res: dict) -> bool:
 
 
 def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1) -> dict:
-    from sensor_model import C, KNOWN_RIG, write_record
+    from sensor_model import C, THRUST, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
     from rotorlanding.ensemble import random_drop_offset
 
-    model = tmp / f"{case['case']}.toml"
-    model.write_text(f'{KNOWN_RIG}\n[effects]\n' + "".join(f"{e} = false\n" for e in case["off"])
-                     + '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n' + (THRUST if case["thrust"] else ""))
+    model = known_rig_model(tmp / f"{case['case']}.toml", case["off"], extra=THRUST if case["thrust"] else "")
     rec = tmp / f"{case['case']}.csv"
     sen = sensor(i, case)
     if repeats == 1:

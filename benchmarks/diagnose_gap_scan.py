@@ -21,10 +21,6 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
-C = 2e-4
-KNOWN_RIG = (f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}", '
-             f'"{ROOT / "scenarios" / "rig_rotor_first.toml"}", '
-             f'"{ROOT / "tests" / "known_rig_bearings.toml"}"]')
 
 
 def local_minima(g: list[float]) -> int:
@@ -37,15 +33,14 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
     from its own random point within 5 um (seeded), compared as their mean features (diagnose's
     ``Repeated``) with the model's ensembles (``ensemble`` drops of radius ``radius_m``)."""
     import numpy as np
-    from sensor_model import write_record
+    from sensor_model import C, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis
     from rotorlanding.ensemble import random_drop_offset
     from rotorlanding.features import ensemble_features
 
     with tempfile.TemporaryDirectory() as tmp:
-        model = Path(tmp) / "model.toml"
-        model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\n[operating]\nspeed_rpm = 7000.0\nt_end = {t_end!r}\n')
+        model = known_rig_model(Path(tmp) / "model.toml", ["windage"], t_end=t_end)
         if records == 1:
             write_record(model, [f"contact.mu_rad={truth!r}"], Path(tmp) / "rig.csv", clearance=C, seed=3)
             _, _, meas, _ = measured_for_diagnosis(model, Path(tmp) / "rig.csv", [], None)

@@ -20,6 +20,17 @@ KNOWN_RIG = (f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}", '
              f'"{ROOT / "tests" / "known_rig_bearings.toml"}"]')
 #: its radial clearance [m]
 C = 2e-4
+#: the axial landing of the combined (forward-whirl) cases: the paper's 4 kN thrust, axial AMB off
+THRUST = "[axial]\nf_thrust = 4000.0\n[amb]\ndrop_axial = true\n"
+
+
+def known_rig_model(path, off=(), *, t_end: float = 0.3, extra: str = "") -> Path:
+    """Write the model file the diagnose tests and benches land: the known rig at 7000 rpm for
+    ``t_end`` s, the effects in ``off`` switched off, ``extra`` TOML appended (e.g. :data:`THRUST`)."""
+    path = Path(path)
+    effects = "[effects]\n" + "".join(f"{e} = false\n" for e in off) if off else ""
+    path.write_text(f"{KNOWN_RIG}\n{effects}[operating]\nspeed_rpm = 7000.0\nt_end = {t_end!r}\n{extra}")
+    return path
 
 CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm")
 

@@ -1,6 +1,7 @@
 """Model-gap diagnosis on data with a hidden effect (short runs)."""
 
 import json
+import sys
 import tomllib
 from pathlib import Path
 
@@ -10,6 +11,9 @@ import pytest
 from rotorlanding.cli import main
 from rotorlanding.diagnose_run import _simulate_features, diagnose
 
+sys.path.insert(0, str(Path(__file__).parent))
+from sensor_model import THRUST, known_rig_model  # noqa: E402
+
 ROOT = Path(__file__).resolve().parents[1]
 C = 2e-4
 PAPER_TABLE = ROOT / "scenarios" / "measured" / "paper_table2_fig39.toml"
@@ -17,18 +21,12 @@ PAPER_MODEL = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
 # the hidden-effect cases run on the first rig rotor (a known rig whose effect signatures these
 # cases were sized for; the fitted 104 kg rotor slows down three times less from the same windage)
 # and with the bearing values they were sized on (tests/known_rig_bearings.toml: the paper rig's
-# calibration may move, these cases test the method)
-KNOWN_RIG = (f'include = ["{ROOT / "scenarios" / "landing_7000rpm.toml"}", '
-             f'"{ROOT / "scenarios" / "rig_rotor_first.toml"}", '
-             f'"{ROOT / "tests" / "known_rig_bearings.toml"}"]')
+# calibration may move, these cases test the method): sensor_model.known_rig_model
 
 
 @pytest.fixture
 def model_without_windage(tmp_path):
-    f = tmp_path / "model.toml"
-    f.write_text(f'{KNOWN_RIG}\n'
-                 '[effects]\nwindage = false\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
-    return f
+    return known_rig_model(tmp_path / "model.toml", ["windage"])
 
 
 def test_hidden_windage_is_named_and_the_gap_shrinks(model_without_windage):
@@ -78,9 +76,7 @@ def test_similar_signatures_told_apart(tmp_path, hidden, value):
     from rotorlanding.features import extract_features
     from rotorlanding.measured import detect_drop, load_measurement
 
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n'
-                     '[effects]\nwindage = false\nball_drag = false\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    model = known_rig_model(tmp_path / "model.toml", ["windage", "ball_drag"])
     truth = make_hidden_effect_data(model, hidden, tmp_path / "rig.csv", seed=3, value=value, drop_channel="NDE_y_m")
     m = load_measurement(tmp_path / "rig.csv")
     assert not m.has("NDE_y_m")
@@ -115,10 +111,7 @@ def test_more_hidden_effects_named(tmp_path, hidden, value, thrust):
     from rotorlanding.features import extract_features
     from rotorlanding.measured import detect_drop, load_measurement
 
-    model = tmp_path / "model.toml"
-    extra = "[axial]\nf_thrust = 4000.0\n[amb]\ndrop_axial = true\n" if thrust else ""
-    model.write_text(f'{KNOWN_RIG}\n[effects]\n{hidden} = false\n'
-                     f'[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n' + extra)
+    model = known_rig_model(tmp_path / "model.toml", [hidden], extra=THRUST if thrust else "")
     make_hidden_effect_data(model, hidden, tmp_path / "rig.csv", seed=1, value=value)
     m = load_measurement(tmp_path / "rig.csv")
     feats = extract_features(m.shifted(detect_drop(m, C)), clearance=C)
@@ -137,9 +130,7 @@ def test_two_missing_effects_found_with_max_effects_2(tmp_path):
     from rotorlanding.features import extract_features
     from rotorlanding.measured import detect_drop, load_measurement
 
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\n'
-                     'ribbon_cross_coupling = false\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    model = known_rig_model(tmp_path / "model.toml", ["windage", "ribbon_cross_coupling"])
     make_hidden_effect_data(model, "windage", tmp_path / "rig.csv", seed=2, value=1.2e-6,
                             extra=["effects.ribbon_cross_coupling=true", "bearings.DE.eta=0.4", "bearings.NDE.eta=0.4"])
     m = load_measurement(tmp_path / "rig.csv")
@@ -232,8 +223,7 @@ def test_faults_are_candidates_only_on_request(tmp_path):
     from rotorlanding.effects import CATALOGUE
 
     assert CATALOGUE["worn_bearing_drag"].fault and not CATALOGUE["windage"].fault
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.2\n')
+    model = known_rig_model(tmp_path / "model.toml", t_end=0.2)
     feats = {"whirl_direction": ("none", 0.0)}
     # the effect candidates are the point: no parameter candidates (each would cost ~13 landings)
     res = diagnose(feats, model, clearance=C, workers=1, maxiter=2, parameters=[])

@@ -14,14 +14,12 @@ from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, sensor_n
 from rotorlanding.measured import load_measurement
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sensor_model import C, KNOWN_RIG, write_record  # noqa: E402
+from sensor_model import C, known_rig_model, write_record  # noqa: E402
 
 
 
 def _model(tmp_path, off):
-    f = tmp_path / "model.toml"
-    f.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\n{off}\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
-    return f
+    return known_rig_model(tmp_path / "model.toml", ["windage", *off])
 
 
 def test_noise_gate_from_the_data_keeps_a_chaotic_clean_control_silent(tmp_path):
@@ -29,7 +27,7 @@ def test_noise_gate_from_the_data_keeps_a_chaotic_clean_control_silent(tmp_path)
     2.8 um off centre (a realisation the gate's members do not contain) differs from the centred
     drop by a gap of 1.44 (measured), far above the old constant gate 0.3. The estimated gate
     covers it and nothing is named."""
-    model = _model(tmp_path, "radial_friction = false")
+    model = _model(tmp_path, ["radial_friction"])
     csv = tmp_path / "rig.csv"
     drop = write_record(model, ["amb.drop_offset_m=[-2.809e-06, -1.052e-06]"], csv, clearance=C, seed=2,
                         noise_m=1.0e-6, noise_rpm=2.0)
@@ -58,7 +56,7 @@ def test_a_late_time_offset_is_warned_about(tmp_path, capsys, given, warned):
     """A drop instant given 10 ms late: even the true model then misses (the model as it is is the
     truth here); the warning names the offset, the detected drop and both gaps. The right offset
     gives none."""
-    model = _model(tmp_path, "")
+    model = _model(tmp_path, [])
     csv = tmp_path / "rig.csv"
     write_record(model, [], csv, clearance=C, seed=5, drop_at_s=3.0)
     out = tmp_path / "diag"

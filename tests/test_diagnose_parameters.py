@@ -10,7 +10,7 @@ import pytest
 from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sensor_model import C, KNOWN_RIG, write_record  # noqa: E402
+from sensor_model import C, known_rig_model, write_record  # noqa: E402
 
 
 
@@ -19,9 +19,7 @@ def heavy_hub(tmp_path_factory):
     """The rig's coupling hub is 7 kg where the model has 4 kg (inside its sourced bound 1-8 kg);
     nothing else differs. The model also lacks windage and ribbon cross-coupling (candidates)."""
     d = tmp_path_factory.mktemp("hub")
-    model = d / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\nribbon_cross_coupling = false\n'
-                     '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    model = known_rig_model(d / "model.toml", ["windage", "ribbon_cross_coupling"])
     write_record(model, ["rotor.disks.3.mass=7.0"], d / "rig.csv", clearance=C, seed=11)
     _, m, meas, info = measured_for_diagnosis(model, d / "rig.csv", [], None)
     return model, meas, info, d
@@ -64,9 +62,7 @@ def test_a_larger_clearance_is_found_as_the_wrong_parameter(tmp_path):
     nothing told the user what does explain' it). Measured: named bearings.DE.clearance 2e-4 ->
     2.5e-4 m, gap 1.84 -> 0.56; screened only at its bounds or on a 5-point grid it was missed
     (its gap is a V 0.3e-4 wide: 1.84 at 2e-4, 0.09 at 2.6e-4, 1.86 at 3e-4)."""
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\nribbon_cross_coupling = false\n'
-                     '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    model = known_rig_model(tmp_path / "model.toml", ["windage", "ribbon_cross_coupling"])
     write_record(model, ["bearings.DE.clearance=2.6e-4"], tmp_path / "rig.csv", clearance=C, seed=11)
     _, m, meas, info = measured_for_diagnosis(model, tmp_path / "rig.csv", [], None)
     res = diagnose(meas, model, clearance=C, candidates=["windage", "ribbon_cross_coupling"], workers=2,

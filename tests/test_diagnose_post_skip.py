@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sensor_model import C, KNOWN_RIG  # noqa: E402
+from sensor_model import C, known_rig_model  # noqa: E402
 
 
 def test_skipping_the_thermal_post_changes_no_feature(tmp_path):
@@ -16,8 +16,7 @@ def test_skipping_the_thermal_post_changes_no_feature(tmp_path):
     from rotorlanding.run import simulate
     from rotorlanding.scenario import load_scenario
 
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[operating]\nspeed_rpm = 7000.0\nt_end = 0.12\n')
+    model = known_rig_model(tmp_path / "model.toml", t_end=0.12)
     spec, t, q, v, _ = simulate(load_scenario(model, []), progress=False)
     full = evaluate(spec, t, q, v)
     cut = evaluate(spec, t, q, v, skip=d.POST_NOT_NEEDED)

@@ -12,7 +12,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 def test_a_race_spin_up_no_noise_member_produces_names_radial_friction_below_the_gate(tmp_path):
     import diagnose_bench as bench
-    from sensor_model import C, KNOWN_RIG, write_record
+    from sensor_model import C, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis
 
@@ -21,9 +21,7 @@ def test_a_race_spin_up_no_noise_member_produces_names_radial_friction_below_the
     cases = bench.cases()
     i = next(k for k, c in enumerate(cases) if c["case"] == "single_radial_friction_weak")
     case, sen = cases[i], bench.sensor(i, cases[i])
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[effects]\nradial_friction = false\nwindage = false\n'
-                     '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
+    model = known_rig_model(tmp_path / "model.toml", ["radial_friction", "windage"])
     write_record(model, case["sets"], tmp_path / "rig.csv", clearance=C, seed=sen["seed"], fs_hz=sen["fs_hz"],
                  pre_trigger_s=sen["pre_trigger_s"], drop_at_s=sen["drop_at_s"], channels=sen["channels"],
                  noise_by_channel=sen["noise_by_channel"])

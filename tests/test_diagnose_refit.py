@@ -10,7 +10,7 @@ from rotorlanding.diagnose_run import _simulate_features, diagnose, measured_for
 from rotorlanding.features import gap
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sensor_model import C, KNOWN_RIG, write_record  # noqa: E402
+from sensor_model import C, THRUST, known_rig_model, write_record  # noqa: E402
 
 TRUTH = ["effects.axial_rub=true", "contact.mu_ax=0.3", "effects.outer_race_coulomb=true", "bearings.NDE.mu_d=0.3"]
 
@@ -20,9 +20,7 @@ def test_axial_rub_and_outer_race_coulomb_both_named_after_a_joint_refit(tmp_pat
     nothing (1.035 -> 1.041). Measured here (0.3 s, thrust 4 kN): step one fits mu_ax = 0.42 alone
     (gap 2.82 -> 1.11); outer-race friction on top with mu_ax held gives 0.72, the joint re-fit
     0.33 (mu_ax 0.275, mu_d 0.39; truth 0.3 / 0.3)."""
-    model = tmp_path / "model.toml"
-    model.write_text(f'{KNOWN_RIG}\n[effects]\naxial_rub = false\nouter_race_coulomb = false\n'
-                     '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n[axial]\nf_thrust = 4000.0\n[amb]\ndrop_axial = true\n')
+    model = known_rig_model(tmp_path / "model.toml", ["axial_rub", "outer_race_coulomb"], extra=THRUST)
     csv = tmp_path / "rig.csv"
     write_record(model, TRUTH, csv, clearance=C, seed=7)
     _, m, meas, info = measured_for_diagnosis(model, csv, [], None)

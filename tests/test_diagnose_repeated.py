@@ -16,7 +16,7 @@ from rotorlanding.errors import InputError
 from rotorlanding.features import ensemble_features, gap
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sensor_model import C, KNOWN_RIG, write_record  # noqa: E402
+from sensor_model import C, known_rig_model, write_record  # noqa: E402
 
 
 def _offset(o: list[str]) -> tuple[float, float]:
@@ -86,10 +86,7 @@ def test_gate_members_are_means_of_as_many_drops_as_records():
 
 @pytest.fixture
 def rig_without_windage(tmp_path):
-    f = tmp_path / "model.toml"
-    f.write_text(f'{KNOWN_RIG}\n[effects]\nwindage = false\nball_drag = false\n'
-                 '[operating]\nspeed_rpm = 7000.0\nt_end = 0.3\n')
-    return f
+    return known_rig_model(tmp_path / "model.toml", ["windage", "ball_drag"])
 
 
 def _records(model, sets, tmp_path, n, seed):
