@@ -1,0 +1,102 @@
+"""Do the diagnose bench's records carry the effects it fails to name? (issue 20, session 19)
+
+For each bench case given, the records are rebuilt as ``benchmarks/diagnose_bench.py --repeats R``
+builds them (same seeds), and two models are scored against their mean features on the drop points
+``diagnose`` uses: the model as the case gives it (the effect missing) and the true model (the
+case's own overrides). Each model: R drops from the 5 um circle and 4 gate members of R drops with
+the records' sensor noise. Two metrics: diagnose's fixed-scale gap, and a whitened one (every
+feature's scale replaced by its own scatter over the model's 5R single drops times sqrt(2/R), the
+noise of a difference of two means of R; never below FLOOR times the fixed scale). Printed: gap,
+gate (mean + t(0.95) sqrt(1 + 1/k) s of the member gaps, at least their largest), their ratio and
+the four largest whitened feature distances; one JSON per case in docs/studies/diagnose_information/
+
+usage: RECORDS=4 python docs/studies/diagnose_information.py CASE[,CASE...] [FLOOR] > out.txt
+Output of session 19: docs/studies/diagnose_information/ (4 and 8 records).
+"""
+import sys, json, math, tempfile
+from pathlib import Path
+import numpy as np
+ROOT = Path(__file__).resolve().parents[2]; sys.path.insert(0, str(ROOT / 'tests')); sys.path.insert(0, str(ROOT / 'benchmarks'))
+import diagnose_bench as B
+from sensor_model import C, THRUST, known_rig_model, write_record
+from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, _journal_rows, DEFAULT_JOURNALS
+from rotorlanding.ensemble import random_drop_offset, drop_offsets, DROP_RADIUS_M
+from rotorlanding.features import ensemble_features, gap_points, scale_of, WHIRL_SHARES
+from scipy.stats import t as student_t
+
+R = int(__import__("os").environ.get("RECORDS", "4"))
+FLOOR = float(sys.argv[2]) if len(sys.argv) > 2 else 0.1
+OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
+
+def gate_of(gaps):
+    k = len(gaps)
+    return max(max(gaps), float(np.mean(gaps) + student_t.ppf(0.95, k - 1) * math.sqrt(1 + 1 / k) * np.std(gaps, ddof=1)))
+
+def whiten(feats, sig):
+    out = {}
+    for k, v in feats.items():
+        if k in sig and isinstance(v, tuple) and v[1]:
+            out[k] = (v[0], max(sig[k], FLOOR * v[1]))
+        else:
+            out[k] = v
+    return out
+
+def analyse(sim, meas_mean, extra, noise):
+    own = sim.features([extra + o for o in drop_offsets(R)], single=True)
+    own = [o[0] for o in own]
+    groups = [drop_offsets(R, DROP_RADIUS_M, (g + 1) / (R + 1)) for g in range(4)]
+    flat = sim.features([extra + o for grp in groups for o in grp], noise=noise, single=True)
+    flat = [f[0] for f in flat]
+    model = _journal_rows(ensemble_features(own), DEFAULT_JOURNALS)
+    members = [_journal_rows(ensemble_features(flat[g * R:(g + 1) * R]), DEFAULT_JOURNALS) for g in range(4)]
+    singles = [_journal_rows(f, DEFAULT_JOURNALS) for f in own + flat]
+    sig = {}
+    for k in model:
+        if k in ('whirl_direction', WHIRL_SHARES):
+            continue
+        vals = [s[k][0] for s in singles if k in s and isinstance(s[k][0], (int, float)) and s[k][0] is not None]
+        if len(vals) >= 4:
+            sig[k] = float(np.std(vals, ddof=1)) * math.sqrt(2.0 / R)
+    out = {}
+    for label, tf in (('phys', lambda f: f), ('white', lambda f: whiten(f, sig))):
+        g, rows = gap_points([tf(meas_mean)], [tf(model)])
+        mg = [gap_points([tf(m)], [tf(model)])[0] for m in members]
+        out[label] = {'gap': g, 'gate': gate_of(mg), 'members': mg,
+                      'top': sorted(((r['feature'], round(r['distance'], 2)) for r in rows), key=lambda x: -x[1])[:4]}
+    out['sigma'] = {k: (v, scale_of(k, model[k][0] if model[k][0] is not None else 1.0, C) if k in model else None) for k, v in sig.items()}
+    return out
+
+def main():
+    names = sys.argv[1].split(',')
+    allc = B.cases()
+    for name in names:
+        i = [c['case'] for c in allc].index(name); case = allc[i]
+        tmp = Path(tempfile.mkdtemp())
+        model = known_rig_model(tmp / f"{case['case']}.toml", case['off'], extra=THRUST if case['thrust'] else '')
+        sen = B.sensor(i, case)
+        rng = np.random.default_rng(5000 + i)
+        recs = []
+        for k in range(R):
+            recs.append(tmp / f"{case['case']}_{k}.csv")
+            write_record(model, case['sets'] + random_drop_offset(rng), recs[-1], clearance=C, seed=sen['seed'] + 7919 * k,
+                         fs_hz=sen['fs_hz'], pre_trigger_s=sen['pre_trigger_s'], drop_at_s=float(rng.uniform(0.5, 10.0)),
+                         channels=sen['channels'], noise_by_channel=sen['noise_by_channel'])
+        clearance, _, meas, info = records_for_diagnosis(model, recs, [])
+        mm = _journal_rows(ensemble_features(meas.features), DEFAULT_JOURNALS)
+        sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=R, records=R)
+        try:
+            res = {'case': name, 'as_is': analyse(sim, mm, [], info['sensor_noise'])}
+            if case['kind'] != 'clean':
+                res['truth'] = analyse(sim, mm, list(case['sets']), info['sensor_noise'])
+        finally:
+            sim.close()
+        for k in ('as_is', 'truth'):
+            if k in res:
+                a = res[k]
+                print(name, k, 'phys gap %.3f gate %.3f ratio %.2f | white gap %.3f gate %.3f ratio %.2f' % (
+                    a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
+                    a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
+        OUT.mkdir(parents=True, exist_ok=True)
+        (OUT / f'{name}_R{R}.json').write_text(json.dumps(res, default=str, indent=1))
+
+main()
