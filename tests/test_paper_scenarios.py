@@ -208,6 +208,30 @@ def test_band_rule_margins_and_provenance():
     assert prov["t2_force_max"] == "predicted"
 
 
+def test_orbit_reading_splits_the_displacement_rows_into_centre_and_half_range():
+    """Each table's displacement max and min read as the orbit's centre and half-range, for the
+    experiment (Table 1: +0.2 / -0.4 mm, centre -0.1, half-range 0.3), the paper's simulation
+    (+0.25 / -0.28) and ours (the ensemble's medians), checked against the hand computation."""
+    from rotorlanding.validate import CASES, evaluate_cases, orbit_readings
+
+    s = {k: None for k in CASES}
+    ens = _paper_ensembles(backward_whirl=[_member("backward", 49.0, 0.4, disp=(-3.4e-4, 3.1e-4))] * 16,
+                           forward_7000=[_member("forward", 65.0, 0.1, disp=(-4.2e-4, 4.0e-4), force=(-9e3, 10e3))] * 8)
+    ev = evaluate_cases(s, ens)
+    t1, t2 = orbit_readings(ev["checks"])
+    assert t1["table"] == "Table 1" and t2["table"] == "Table 2"
+    assert t1["experimental"]["centre"] == pytest.approx(-1e-4) and t1["experimental"]["half_range"] == pytest.approx(3e-4)
+    assert t1["paper_simulated"]["centre"] == pytest.approx(-1.5e-5)
+    assert t1["paper_simulated"]["half_range"] == pytest.approx(2.65e-4)
+    assert t1["ours"]["centre"] == pytest.approx(-1.5e-5) and t1["ours"]["half_range"] == pytest.approx(3.25e-4)
+    assert t1["half_range_error"] == pytest.approx(0.25e-4 / 3e-4)
+    # Table 2: experiment +0.15 / -0.3 mm
+    assert t2["experimental"]["centre"] == pytest.approx(-7.5e-5) and t2["ours"]["half_range"] == pytest.approx(4.1e-4)
+    assert t2["half_range_error"] == pytest.approx((4.1e-4 - 2.25e-4) / 2.25e-4)
+    # a table whose displacement rows are missing gives no reading
+    assert orbit_readings([c for c in ev["checks"] if not c["check"].startswith("Table 1")]) == [t2]
+
+
 def test_heldout_verdict_is_flagged_when_its_share_of_drops_hangs_on_noise():
     """A held-out speed has two margins, the frequency's and the share of drops': 7 of 8 forward at
     the right frequency passes with no margin in drops (s.e. 0.94), so it is flagged within noise;
