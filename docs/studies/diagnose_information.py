@@ -3,14 +3,14 @@
 For each bench case given, the records are rebuilt as ``benchmarks/diagnose_bench.py --repeats R``
 builds them (same seeds), and two models are scored against their mean features on the drop points
 ``diagnose`` uses: the model as the case gives it (the effect missing) and the true model (the
-case's own overrides). Each model: R drops from the 5 um circle and 4 gate members of R drops with
+case's own overrides; for a pair also the true model without each of its two effects). Each model: R drops from the 5 um circle and 4 gate members of R drops with
 the records' sensor noise. Two metrics: diagnose's fixed-scale gap, and a whitened one (every
 feature's scale replaced by its own scatter over the model's 5R single drops times sqrt(2/R), the
 noise of a difference of two means of R; never below FLOOR times the fixed scale). Printed: gap,
 gate (mean + t(0.95) sqrt(1 + 1/k) s of the member gaps, at least their largest), their ratio and
 the four largest whitened feature distances; one JSON per case in docs/studies/diagnose_information/
 
-usage: RECORDS=4 python docs/studies/diagnose_information.py CASE[,CASE...] [FLOOR] > out.txt
+usage: RECORDS=4 python docs/studies/diagnose_information.py CASE[,CASE...]|all [FLOOR] > out.txt
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records).
 """
 import sys, json, math, tempfile
@@ -67,8 +67,8 @@ def analyse(sim, meas_mean, extra, noise):
     return out
 
 def main():
-    names = sys.argv[1].split(',')
     allc = B.cases()
+    names = [c['case'] for c in allc] if sys.argv[1] == 'all' else sys.argv[1].split(',')
     for name in names:
         i = [c['case'] for c in allc].index(name); case = allc[i]
         tmp = Path(tempfile.mkdtemp())
@@ -88,9 +88,14 @@ def main():
             res = {'case': name, 'as_is': analyse(sim, mm, [], info['sensor_noise'])}
             if case['kind'] != 'clean':
                 res['truth'] = analyse(sim, mm, list(case['sets']), info['sensor_noise'])
+            if case['kind'] == 'pair':
+                # each effect's own share: the true model without it (what the second step must see)
+                for eff in case['truth']:
+                    res[f'truth_without_{eff}'] = analyse(sim, mm, [x for x in case['sets'] if x != f'effects.{eff}=true'],
+                                                          info['sensor_noise'])
         finally:
             sim.close()
-        for k in ('as_is', 'truth'):
+        for k in [k for k in res if k != 'case']:
             if k in res:
                 a = res[k]
                 print(name, k, 'phys gap %.3f gate %.3f ratio %.2f | white gap %.3f gate %.3f ratio %.2f' % (
