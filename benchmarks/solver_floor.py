@@ -7,9 +7,9 @@ with each user function replaced by a *replay*: call k returns the k-th recorded
 pre-step repeats the recorded damping updates at the same calls. Exudyn's solver is deterministic,
 so the replay takes the same path step for step (checked: the final state is bit-identical), with
 the same Newton iterations, Jacobians and Python crossings, but each law's body reduced to a list
-lookup. Its wall time is what the C++ solver and the crossings cost by themselves: no change to the
-laws, their compiled kernels or the post-processing can take a landing below it (the post-processing
-is not even in it).
+lookup. Its wall time is what the C++ solver and the crossings cost by themselves: no faster way of
+computing the same laws (kernels, argument handling, post-processing) can take a landing below it
+(the post-processing is not even in it); only fewer steps, Newton iterations or crossings can.
 
 The scenario's fixed step (the rig's 5e-5 s, as `rotorlanding validate` lands), and with --auto the
 error-controlled step (``solver.step_control = "auto"``): its controller (Exudyn's PostNewton hook)
