@@ -866,6 +866,22 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             "ensemble": ensemble, "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
 
 
+def gate_bound(gaps: list[float], floor: float = NOISE_GAP_MIN) -> float:
+    """The noise gate from the gaps of the members (noise alone): the one-sided 95 % prediction
+    bound of one more member gap, mean + t(0.95, k-1) sqrt(1 + 1/k) s (members taken as normal),
+    at least their largest and ``floor``. Why a bound and not the largest: a chaotic landing spreads
+    widely (without radial friction 0.16-1.44 over 6 drops of one model), and the largest of 4
+    members (1.16 there) sits below a third of the noise gaps."""
+    gate = max([floor] + list(gaps))
+    if len(gaps) >= 2:
+        from scipy.stats import t as student_t
+
+        k = len(gaps)
+        gate = max(gate, float(np.mean(gaps) + student_t.ppf(0.95, k - 1) * math.sqrt(1 + 1 / k)
+                               * np.std(gaps, ddof=1)))
+    return gate
+
+
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
                 fixed: list[str] | None = None, journals=DEFAULT_JOURNALS) -> dict:
     """The gap noise alone produces, estimated, not assumed: the model as it is dropped from
@@ -918,16 +934,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
         # features a noisy off-centre drop produces and the centred one does not: their absence
         # in the model is no sign of a missing effect (the qualitative rule in diagnose)
         produced |= {_row_key(r) for r in rows if r.get("absent_in") == "model"}
-    gate = max([NOISE_GAP_MIN] + gaps)
-    if len(gaps) >= 2:
-        # one-sided 95 % prediction bound of one more noise gap (members taken as normal): a chaotic
-        # landing spreads widely (without radial friction 0.16-1.44 over 6 drops of one model), and
-        # the largest of 4 members (1.16 there) sits below a third of the noise gaps
-        from scipy.stats import t as student_t
-
-        k = len(gaps)
-        bound = float(np.mean(gaps) + student_t.ppf(0.95, k - 1) * math.sqrt(1 + 1 / k) * np.std(gaps, ddof=1))
-        gate = max(gate, bound)
+    gate = gate_bound(gaps)
     what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
     return {"gate": gate, "source": f"{what} from a {1e6 * radius:g} um circle" + (" with the record's sensor noise"
                                                                                    if sigma else ""),

@@ -19,18 +19,17 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]; sys.path.insert(0, str(ROOT / 'tests')); sys.path.insert(0, str(ROOT / 'benchmarks'))
 import diagnose_bench as B
 from sensor_model import C, THRUST, known_rig_model, write_record
-from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, _journal_rows, DEFAULT_JOURNALS
+from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, _journal_rows, DEFAULT_JOURNALS, gate_bound
 from rotorlanding.ensemble import random_drop_offset, drop_offsets, DROP_RADIUS_M
 from rotorlanding.features import ensemble_features, gap_points, scale_of, WHIRL_SHARES
-from scipy.stats import t as student_t
-
 R = int(__import__("os").environ.get("RECORDS", "4"))
-FLOOR = float(sys.argv[2]) if len(sys.argv) > 2 else 0.1
+FLOOR = 0.1  # whitened scale never below this share of the fixed scale (main: the second argument)
 OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
 
+
 def gate_of(gaps):
-    k = len(gaps)
-    return max(max(gaps), float(np.mean(gaps) + student_t.ppf(0.95, k - 1) * math.sqrt(1 + 1 / k) * np.std(gaps, ddof=1)))
+    # diagnose's own gate (gate_bound) without its 0.1 floor, which is in fixed-scale units
+    return gate_bound(gaps, floor=0.0)
 
 def whiten(feats, sig):
     out = {}
@@ -66,9 +65,18 @@ def analyse(sim, meas_mean, extra, noise):
     out['sigma'] = {k: (v, scale_of(k, model[k][0] if model[k][0] is not None else 1.0, C) if k in model else None) for k, v in sig.items()}
     return out
 
-def main():
+def main(argv):
+    global FLOOR
     allc = B.cases()
-    names = [c['case'] for c in allc] if sys.argv[1] == 'all' else sys.argv[1].split(',')
+    known = [c['case'] for c in allc]
+    if not argv:
+        raise SystemExit("usage: RECORDS=4 python docs/studies/diagnose_information.py CASE[,CASE...]|all [FLOOR]")
+    names = known if argv[0] == 'all' else argv[0].split(',')
+    bad = [n for n in names if n not in known]
+    if bad:
+        raise SystemExit(f"diagnose_information.py: unknown case {bad[0]!r}; the bench's cases: {', '.join(known)}")
+    if len(argv) > 1:
+        FLOOR = float(argv[1])
     for name in names:
         i = [c['case'] for c in allc].index(name); case = allc[i]
         tmp = Path(tempfile.mkdtemp())
@@ -104,4 +112,5 @@ def main():
         OUT.mkdir(parents=True, exist_ok=True)
         (OUT / f'{name}_R{R}.json').write_text(json.dumps(res, default=str, indent=1))
 
-main()
+if __name__ == "__main__":
+    main(sys.argv[1:])
