@@ -29,13 +29,31 @@ def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
     return reac, {sp: ms.mode_rows(sysm, fe, sp, fmax) for sp in speeds}
 
 
-if __name__ == "__main__":
-    args = sys.argv[1:]
-    path = args.pop(0) if args and args[0].endswith(".toml") else "scenarios/rig_rotor.toml"
-    ks = [float(a) for a in args] or [0.0, 3e5, 1e6, 3e6, 1e7, 3e7]
-    d = ms.load(path)
+def main(argv) -> int:
+    """Print the screen for each k_c; bad arguments are one line on stderr (exit 2), not a traceback."""
+    from rotorlanding.errors import InputError
+
+    args = list(argv)
+    # the rig rotor of this checkout by default, from any working directory
+    path = args.pop(0) if args and args[0].endswith(".toml") else str(Path(__file__).resolve().parents[2] /
+                                                                        "scenarios" / "rig_rotor.toml")
+    try:
+        ks = [float(a) for a in args] or [0.0, 3e5, 1e6, 3e6, 1e7, 3e7]
+    except ValueError as exc:
+        print(f"coupling_screen.py: k_c must be numbers in N/m ({exc})", file=sys.stderr)
+        return 2
+    try:
+        d = ms.load(path)
+    except InputError as exc:
+        print(f"coupling_screen.py: {exc}", file=sys.stderr)
+        return 2
     for k_c in ks:
         reac, modes = screen(d, k_c)
         print(f"k_c {k_c:.3g} N/m: reactions " + ", ".join(f"{k} {v:.0f} N" for k, v in reac.items()))
         for sp, row in modes.items():
             print(f"  {sp:5d} rpm: " + "  ".join(f"{w}{f:.1f}(DE{a:.2f},NDE{b:.2f})" for w, f, a, b in row))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
