@@ -50,7 +50,6 @@ class Tape:
     def __init__(self, f, key):
         self.f, self.key = f, key
         self.out: list = []
-        self.k = 0
         self.updates: dict = {}  # pre-step: call index -> damping matrix set in that call
 
     def record(self, *args):
@@ -85,7 +84,6 @@ class Tape:
                 i = k[0]
                 k[0] = i + 1
                 return out[i]
-        self.counter = k
         return g
 
 
@@ -176,7 +174,7 @@ def _build(path: str, t_end: float | None, tapes: list | None, replay: list | No
         model = em.build_exudyn(spec, instrument={})
     finally:
         em._timed = original
-    return sc, model, em.SolverSettings.from_spec(spec)
+    return sc, model
 
 
 def _solve(sc, model, controller=None):
@@ -202,7 +200,7 @@ def run_case(name: str, path: str, repeat: int, t_end: float | None, auto: str |
 
     tapes: list = []
     ctl = ControllerTape()
-    sc, model, _ = _build(path, t_end, tapes, None, auto)
+    sc, model = _build(path, t_end, tapes, None, auto)
     rec_stats, q_rec, v_rec = _solve(sc, model, ctl.recording() if auto else None)
     normal, floor, loads = [], [], []
     same = True
@@ -213,7 +211,7 @@ def run_case(name: str, path: str, repeat: int, t_end: float | None, auto: str |
         loads.append(os.getloadavg()[0])
         st, qn, vn = _solve(sc, m)
         normal.append(st["wall_s"])
-        _, mr, _ = _build(path, t_end, None, tapes, auto)
+        _, mr = _build(path, t_end, None, tapes, auto)
         loads.append(os.getloadavg()[0])
         st_r, qr, vr = _solve(sc, mr, ctl.replaying() if auto else None)
         floor.append(st_r["wall_s"])
