@@ -133,7 +133,8 @@ def judge(case: dict, res: dict) -> bool:
     return (res["explanation"] == "parameter" and [q["key"] for q in res["named_parameters"]] == truth)
 
 
-def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1) -> dict:
+def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
+             directed: bool = False) -> dict:
     from sensor_model import C, THRUST, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
@@ -163,7 +164,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
     clearance, _, meas, info = (measured_for_diagnosis(model, rec, [], None) if repeats == 1
                                 else records_for_diagnosis(model, recs, []))
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
-                   max_effects=case["max_effects"], journals=journals, ensemble=ensemble)
+                   max_effects=case["max_effects"], journals=journals, ensemble=ensemble, directed=directed)
     wall = time.perf_counter() - t0
     named = res["named_effects"] + [q["key"] for q in res["named_parameters"]]
     return {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
@@ -219,6 +220,8 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=1,
                     help="records per case: repeated landings of the rig, each from a random point of the 5 um "
                          "circle's disc, diagnosed together (default 1: one record, the rig dropped centred)")
+    ap.add_argument("--directed", action="store_true",
+                    help="diagnose's directed test inside the noise gate (diagnose_run._directed_test)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -237,7 +240,8 @@ def main(argv=None) -> int:
             if case["case"] in done or (only and case["case"] not in only):
                 continue
             try:
-                row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats)
+                row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats,
+                               a.directed)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],

@@ -32,6 +32,7 @@ that the package attribute ``rotorlanding.diagnose`` is the function.
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 import time
@@ -415,6 +416,7 @@ def _calibrate(sim: _Simulator, name: str, terms: list[Term], maxiter: int) -> d
     # first held, each bounded; k counts them all, so a second freedom must pay for itself
     p = eff.parameters[0]
     fit = _fit_1d(sim, on, p, maxiter)
+    null_fit = {"fixed": on, "param": p, "cache": fit["cache"], "grid_points": GRID_POINTS, "gap": fit["gap"]}
     term = Term("effect", name, tuple(eff.parameters), {p.name: fit["x"]})
     best, evaluations = fit, fit["evaluations"]
     for q in eff.parameters[1:]:
@@ -425,7 +427,7 @@ def _calibrate(sim: _Simulator, name: str, terms: list[Term], maxiter: int) -> d
             best = fq
     return {"effect": name, "kind": "effect", "gap": best["gap"], "parameters": dict(term.values), "rows": best["rows"],
             "k": len(eff.parameters), "directions": _directions(best["sims"]), "evaluations": evaluations,
-            "sims": best["sims"], "term": term}
+            "sims": best["sims"], "term": term, "null_fit": null_fit}
 
 
 #: the scenario's uncertain parameters diagnose tries by default (when the scenario has a
@@ -491,15 +493,19 @@ def _parameter_candidates(sim: _Simulator, base, keys, terms: list[Term], maxite
     order = sorted(params, key=lambda p: min(v[0] for v in screened[p.name].values()))
     out = []
     for i, p in enumerate(order):
+        null_fit = None
         if i < PARAMETER_FITS:
             fit = _fit_1d(sim, fixed, p, maxiter, cache=screened[p.name], grid_points=PARAMETER_GRID_POINTS)
+            null_fit = {"fixed": fixed, "param": p, "cache": fit["cache"], "grid_points": PARAMETER_GRID_POINTS,
+                        "gap": fit["gap"]}
         else:
             u, (g, rows, x, sims) = min(screened[p.name].items(), key=lambda kv: kv[1][0])
             fit = {"gap": g, "rows": rows, "x": x, "sims": sims, "evaluations": 2}
         out.append({"effect": p.name, "kind": "parameter", "gap": fit["gap"], "parameters": {p.name: fit["x"]},
                     "from": current.get(p.name), "bound": [p.lower, p.upper], "rows": fit["rows"], "k": 1,
                     "directions": _directions(fit["sims"]), "evaluations": fit["evaluations"], "sims": fit["sims"],
-                    "screened_only": i >= PARAMETER_FITS, "term": Term("parameter", p.name, (p,), {p.name: fit["x"]})})
+                    "screened_only": i >= PARAMETER_FITS, "term": Term("parameter", p.name, (p,), {p.name: fit["x"]}),
+                    "null_fit": null_fit})
     return out
 
 
@@ -535,6 +541,64 @@ def _joint_refit(sim: _Simulator, terms: list[Term], r: dict, maxiter: int) -> N
         r["parameters"] = dict(r["term"].values)
 
 
+#: the directed test's level: the data's shrink must lie below the one-sided 95 % lower
+#: prediction bound of the noise members' shrinks (as the gate's upper bound, :func:`gate_bound`)
+DIRECTED_LEVEL = 0.95
+
+
+def directed_bound(shrinks: list[float]) -> float:
+    """The lower 95 % prediction bound of one more member's shrink (fitted gap / gap before),
+    mean - t(0.95, k-1) sqrt(1 + 1/k) s, at most their smallest; 0 (nothing passes) with fewer than 2."""
+    if len(shrinks) < 2:
+        return 0.0
+    from scipy.stats import t as student_t
+
+    k = len(shrinks)
+    lo = float(np.mean(shrinks) - student_t.ppf(DIRECTED_LEVEL, k - 1) * math.sqrt(1 + 1 / k)
+               * np.std(shrinks, ddof=1))
+    return min(lo, min(shrinks))
+
+
+def _directed_test(sim: _Simulator, cand: dict, members: list, current_gap: float, maxiter: int) -> dict:
+    """Is the candidate's shrink of the gap more than fitting it to noise gives? The gate asks
+    whether the model as it is fits the data within noise (an omnibus question); this asks whether
+    one named direction of change fits them better than it fits noise (a directed one, with more
+    power where the gap is inside the gate). Each noise member (the current model dropped off
+    centre with the record's noise, the gate's ``member_sims``, against which its gap ``g0`` was
+    taken) plays the data: the candidate's first parameter is fitted to it exactly as to the data
+    (the same grid, its landings reused, then the bounded search), and its shrink is the fitted gap
+    over g0. The data's shrink is that same 1-D fit's gap over the current gap (before any joint
+    re-fit, so data and members get the same freedom). Passed when the data's shrink lies below
+    :func:`directed_bound` of the members' shrinks."""
+    nf = cand.get("null_fit")
+    if not nf or not members or not current_gap > 0:
+        return {"passed": False, "why": "no 1-D fit or no members"}
+    names = [p.name for p in sim.points]
+    shrinks = []
+    for feats, g0 in members:
+        if not (math.isfinite(g0) and g0 > 0):
+            continue
+        # the member as the measurement, with the features the data have (no more)
+        feats = [{k: v for k, v in f.items() if k in p.features} for f, p in zip(feats, sim.points)]
+        msim = copy.copy(sim)
+        msim.points = [replace(p, features=f) for p, f in zip(sim.points, feats)]
+        cache = {}
+        for u, (g, rows, x, sims) in nf["cache"].items():
+            if any("__error__" in s_ for s_ in sims):
+                cache[u] = (float("inf"), [], x, sims)
+            else:
+                gm, rm = gap_points(feats, sims, names)
+                cache[u] = (gm, rm, x, sims)
+        fit = _fit_1d(msim, nf["fixed"], nf["param"], maxiter, cache=cache, grid_points=nf["grid_points"])
+        sim.count = msim.count  # the copy counted on from the shared total
+        if math.isfinite(fit["gap"]):
+            shrinks.append(fit["gap"] / g0)
+    data = nf["gap"] / current_gap
+    bound = directed_bound(shrinks)
+    return {"passed": bool(data < bound), "shrink": data, "member_shrinks": shrinks, "bound": bound,
+            "parameter": nf["param"].name}
+
+
 def above_gate(current_gap: float, gate: float, produced: list, score: float, base_score: float) -> bool:
     """A step's best candidate is considered at all when the gap it starts from is above the noise
     gate (or it produces a feature the data show and noise cannot) and its score beats the model
@@ -543,7 +607,7 @@ def above_gate(current_gap: float, gate: float, produced: list, score: float, ba
 
 
 def named_by(above: bool, relative: bool, direction_fixed: bool, best_gap: float, own_gate: float | None,
-             current_gap: float, gate: float) -> str | None:
+             current_gap: float, gate: float, directed: bool = False) -> str | None:
     """Why a step's best candidate is named, or None. Beyond :func:`above_gate`, one of: the gap
     falls by ``MIN_STEP_IMPROVEMENT`` or more; the candidate makes a whirl direction right and
     breaks none; or (repeated records only: ``own_gate`` is None otherwise) what it leaves is
@@ -560,7 +624,8 @@ def named_by(above: bool, relative: bool, direction_fixed: bool, best_gap: float
         why = "the remainder inside the candidate's own noise gate"
     else:
         return None
-    return why + ("" if current_gap > gate else ", a feature noise cannot produce")
+    return why + ("" if current_gap > gate else ", more than fitting it to noise gives" if directed
+                  else ", a feature noise cannot produce")
 
 
 def whirl_direction_fixed(points, measured, before, after, noise_directions) -> tuple[list[str], list[str]]:
@@ -633,7 +698,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
              maxiter: int = 10, t_drop: float = 0.0, base_overrides: list[str] | None = None,
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
              sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
-             ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS) -> dict:
+             ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
+             directed: bool = False) -> dict:
     """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is),
     :class:`Repeated` (the features of several records of one point: compared as their means, the
     model then an ensemble of as many drops unless ``ensemble`` > 1 says otherwise) or a list of
@@ -644,7 +710,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     gate from ``noise_members`` drops of the model (:func:`_noise_gate`); a number is used as is.
     ``info``: from :func:`measured_for_diagnosis` (sensor noise, time-offset check).
     ``journals``: whose per-journal features are compared (the whirl rows are the DE's); a
-    measured feature of another journal is left out, in the gap and in the noise gate alike."""
+    measured feature of another journal is left out, in the gap and in the noise gate alike.
+    ``directed``: where the gap is inside the gate, a candidate that shrinks it may still be named
+    when it shrinks it more than fitting it to the gate's noise members does (:func:`_directed_test`)."""
     from .scenario import load_scenario
 
     t_start = time.perf_counter()
@@ -765,6 +833,13 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             if not math.isfinite(best["gap"]) or not noise["member_gaps"]:
                 produced = []  # a given gate (no members to tell what noise produces) is the only gate
             above = above_gate(current_gap, step_gate, produced, best["score"], base_score)
+            directed_info = None
+            if directed and not above and noise_gap is None and relative and best["score"] < base_score - 2.0:
+                # inside the gate: the directed test, against the members of the gate of the model
+                # the step starts from
+                members_now = (gate_now[1] if gate_now is not None else noise).get("member_sims", [])
+                directed_info = _directed_test(sim, best, members_now, current_gap, maxiter)
+                above = directed_info["passed"]
             own = None
             if above and records > 1 and not relative and not (fixed and not broken) and noise_gap is None \
                     and best.get("term") is not None and math.isfinite(best["gap"]):
@@ -779,7 +854,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                               journals=journals))
                 noise_history.append(own[1]["gate"])
             significant_by = named_by(above, relative, bool(fixed) and not broken, best["gap"],
-                                      own[1]["gate"] if own else None, current_gap, step_gate)
+                                      own[1]["gate"] if own else None, current_gap, step_gate,
+                                      directed=bool(directed_info and directed_info["passed"]))
             significant = significant_by is not None
             # the best of the other kind within 2 score units: the data do not tell them apart
             rival = next((r for r in results[1:] if r["kind"] != best["kind"] and math.isfinite(r["score"])), None)
@@ -797,7 +873,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                           "refit": refit_info,
                           "indistinguishable_from": rival["effect"] if rival and significant
                           and rival["score"] < best["score"] + 2.0 else None,
-                          "gate": step_gate, "own_gate": own[1]["gate"] if own else None,
+                          "gate": step_gate, "own_gate": own[1]["gate"] if own else None, "directed": directed_info,
                           "significant_by": significant_by})
             if not significant:
                 break
@@ -866,7 +942,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             "decisive_features": decisive, "journals": list(journals),
             "records": records,
             "record_spread": _journal_rows(measured.spread, journals) if isinstance(measured, Repeated) else {},
-            "noise": noise, "noise_gate": gate, "noise_final": noise_final, "noise_gate_final": final_gate,
+            "noise": _public(noise), "noise_gate": gate, "noise_final": _public(noise_final),
+            "noise_gate_final": final_gate,
             "noise_gates": noise_history, "warnings": warnings, "time_offset": info.get("time_offset"),
             "absent_in_model_before": _absent_in_model(rows_before),
             "absent_in_model_after": _absent_in_model(current_rows),
@@ -881,6 +958,11 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                         "whirl_before": d0, "whirl_after": d1}
                        for p, d0, d1 in zip(points, directions_before, current_dirs)],
             "ensemble": ensemble, "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
+
+
+def _public(noise: dict | None) -> dict | None:
+    """A noise gate's record without the members' feature tables (kept for the directed test)."""
+    return None if noise is None else {k: v for k, v in noise.items() if k != "member_sims"}
 
 
 def gate_bound(gaps: list[float], floor: float = NOISE_GAP_MIN) -> float:
@@ -916,7 +998,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
         return {"gate": NOISE_GAP_MIN, "source": "minimum (no members)", "member_gaps": [], "member_features": [],
                 "member_directions": []}
 
-    gaps, produced, directions = [], set(), []
+    gaps, produced, directions, kept = [], set(), [], []
     size = max(1, sim.records)
     radius = sim.radius or DROP_RADIUS_M
     if size > 1:
@@ -948,6 +1030,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
         g, rows = gap_points(sims, sims0, [p.name for p in sim.points])
         if math.isfinite(g):
             gaps.append(g)
+            kept.append((sims, g))
         # features a noisy off-centre drop produces and the centred one does not: their absence
         # in the model is no sign of a missing effect (the qualitative rule in diagnose)
         produced |= {_row_key(r) for r in rows if r.get("absent_in") == "model"}
@@ -956,7 +1039,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     return {"gate": gate, "source": f"{what} from a {1e6 * radius:g} um circle" + (" with the record's sensor noise"
                                                                                    if sigma else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),
-            "member_directions": directions}
+            "member_directions": directions, "member_sims": kept}
 
 
 _DIR_Y = {"backward": -1, "none": 0, "forward": 1}
