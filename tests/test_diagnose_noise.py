@@ -78,3 +78,34 @@ def test_a_late_time_offset_is_warned_about(tmp_path, capsys, given, warned):
     else:
         assert rep["warnings"] == [] and "warning" not in err
     assert rep["named_effect"] is None
+
+
+def test_the_gate_members_are_sampled_as_a_record_is():
+    """A record's samples fall at a random phase against the grid the features interpolate on from
+    the drop, so its white noise reaches that grid partly averaged: at phase a the variance is
+    (a^2 + (1 - a)^2) sigma^2, 2/3 sigma^2 on average over a uniform phase. The gate's members are
+    sampled the same way (diagnose_run.logger_samples) before their noise is added; a member whose
+    noise sat on the grid itself kept the full sigma on every extreme (session 20: first rebounds
+    0.242-0.254 mm on the grid, 0.234-0.243 sampled, records 0.227-0.251)."""
+    import numpy as np
+
+    from rotorlanding.diagnose_run import logger_samples, record_rate
+    from rotorlanding.measured import Measurement
+
+    fs, sigma = 10000.0, 1.0
+    t = np.arange(0.0, 0.2, 1.0 / fs)
+    ramp = 3.0 * t + 0.5
+    got = logger_samples({"DE_z_m": (t, ramp)}, fs, 0.3)["DE_z_m"]
+    # a sample before the drop, then one every 1/fs at 0.3 of a period after each grid instant
+    assert got[0][0] == pytest.approx(-0.7 / fs) and np.allclose(np.diff(got[0]), 1.0 / fs)
+    assert np.allclose(got[1][1:], 3.0 * got[0][1:] + 0.5)      # a straight line is sampled exactly
+    assert got[1][0] == pytest.approx(0.5)                        # held before the first instant
+    assert record_rate(Measurement({"DE_z_m": got})) == pytest.approx(fs)
+    ratios = []
+    rng = np.random.default_rng(1)
+    for _ in range(400):
+        ts, _ = logger_samples({"z": (t, 0.0 * t)}, fs, rng.uniform())["z"]
+        noisy = rng.normal(0.0, sigma, ts.size)
+        on_grid = np.interp(t[1:-1], ts, noisy)                   # what the features read
+        ratios.append(np.var(on_grid) / sigma ** 2)
+    assert np.mean(ratios) == pytest.approx(2.0 / 3.0, abs=0.02)
