@@ -588,15 +588,11 @@ DIRECTED_LEVEL = 0.95
 
 def directed_bound(shrinks: list[float]) -> float:
     """The lower 95 % prediction bound of one more member's shrink (fitted gap / gap before),
-    mean - t(0.95, k-1) sqrt(1 + 1/k) s, at most their smallest; 0 (nothing passes) with fewer than 2."""
+    mean - t(0.95, k-1) sqrt(1 + 1/k) s (:func:`_prediction_half_width`), at most their smallest;
+    0 (nothing passes) with fewer than 2."""
     if len(shrinks) < 2:
         return 0.0
-    from scipy.stats import t as student_t
-
-    k = len(shrinks)
-    lo = float(np.mean(shrinks) - student_t.ppf(DIRECTED_LEVEL, k - 1) * math.sqrt(1 + 1 / k)
-               * np.std(shrinks, ddof=1))
-    return min(lo, min(shrinks))
+    return min(float(np.mean(shrinks)) - _prediction_half_width(shrinks, DIRECTED_LEVEL), min(shrinks))
 
 
 def _directed_test(sim: _Simulator, cand: dict, members: list, current_gap: float, maxiter: int) -> dict:
@@ -1017,12 +1013,17 @@ def gate_bound(gaps: list[float], floor: float = NOISE_GAP_MIN) -> float:
     members (1.16 there) sits below a third of the noise gaps."""
     gate = max([floor] + list(gaps))
     if len(gaps) >= 2:
-        from scipy.stats import t as student_t
-
-        k = len(gaps)
-        gate = max(gate, float(np.mean(gaps) + student_t.ppf(0.95, k - 1) * math.sqrt(1 + 1 / k)
-                               * np.std(gaps, ddof=1)))
+        gate = max(gate, float(np.mean(gaps)) + _prediction_half_width(gaps, 0.95))
     return gate
+
+
+def _prediction_half_width(values: list[float], level: float) -> float:
+    """t(level, k-1) sqrt(1 + 1/k) s over k >= 2 values taken as normal: how far one more value may
+    lie from their mean, one-sided (the noise gate's upper bound, the directed test's lower one)."""
+    from scipy.stats import t as student_t
+
+    k = len(values)
+    return float(student_t.ppf(level, k - 1) * math.sqrt(1 + 1 / k) * np.std(values, ddof=1))
 
 
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
