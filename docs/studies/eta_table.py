@@ -27,12 +27,27 @@ def row(p: Path) -> str:
     d = ", ".join(f"{k} {v}" for k, v in sorted(de.items()))
     fs = f"{st.median(f):.1f} ({min(f):.0f}-{max(f):.0f})" if f else "-"
     os_ = f"{st.median(on):.2f}" if on else "-"
-    ov = " ".join(s for s in r["overrides"])
     return f"| {p.stem} | {c} | {d} | {fs} | {os_} | {st.median(fmin):.1f} / {st.median(fmax):.1f} | {fabs:.1f} |"
 
 
-if __name__ == "__main__":
+def main(argv: list[str]) -> int:
+    if not argv:
+        print("usage: python docs/studies/eta_table.py OUT/*.json (ensemble JSONs of docs/studies/ensemble.py)",
+              file=sys.stderr)
+        return 2
+    rows = []
+    for a in argv:
+        try:
+            rows.append(row(Path(a)))
+        except (OSError, ValueError, KeyError, TypeError, IndexError) as exc:
+            print(f"{a}: not an ensemble JSON of docs/studies/ensemble.py ({type(exc).__name__}: {exc})",
+                  file=sys.stderr)
+            return 2
     print("| tag | drops (all) | DE journal | f [Hz] median (range) | onset [s] | DE force min / max [kN] | \\|F\\| [kN] |")
     print("|---|---|---|---|---|---|---|")
-    for a in sys.argv[1:]:
-        print(row(Path(a)))
+    print("\n".join(rows))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
