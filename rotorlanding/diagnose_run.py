@@ -586,16 +586,22 @@ def _joint_refit(sim: _Simulator, terms: list[Term], r: dict, maxiter: int) -> N
 DIRECTED_LEVEL = 0.95
 
 
-def directed_bound(shrinks: list[float]) -> float:
-    """The lower 95 % prediction bound of one more member's shrink (fitted gap / gap before),
-    mean - t(0.95, k-1) sqrt(1 + 1/k) s (:func:`_prediction_half_width`), at most their smallest;
-    0 (nothing passes) with fewer than 2."""
+def directed_bound(shrinks: list[float], candidates: int = 1) -> float:
+    """The lower prediction bound of one more member's shrink (fitted gap / gap before),
+    mean - t(level, k-1) sqrt(1 + 1/k) s (:func:`_prediction_half_width`), at most their smallest;
+    0 (nothing passes) with fewer than 2. ``level`` is ``DIRECTED_LEVEL`` Bonferroni-corrected for
+    the ``candidates`` the tested one was chosen from, 1 - (1 - DIRECTED_LEVEL) / candidates: the
+    data's candidate is the best of the step's, while each member fits that one only, so without the
+    correction some candidate of noise data passes far more often than 5 % of the time
+    (tests/test_diagnose_directed.py measures both rates)."""
     if len(shrinks) < 2:
         return 0.0
-    return min(float(np.mean(shrinks)) - _prediction_half_width(shrinks, DIRECTED_LEVEL), min(shrinks))
+    level = 1.0 - (1.0 - DIRECTED_LEVEL) / max(1, int(candidates))
+    return min(float(np.mean(shrinks)) - _prediction_half_width(shrinks, level), min(shrinks))
 
 
-def _directed_test(sim: _Simulator, cand: dict, members: list, current_gap: float, maxiter: int) -> dict:
+def _directed_test(sim: _Simulator, cand: dict, members: list, current_gap: float, maxiter: int,
+                   candidates: int = 1) -> dict:
     """Is the candidate's shrink of the gap more than fitting it to noise gives? The gate asks
     whether the model as it is fits the data within noise (an omnibus question); this asks whether
     one named direction of change fits them better than it fits noise (a directed one, with more
@@ -605,7 +611,8 @@ def _directed_test(sim: _Simulator, cand: dict, members: list, current_gap: floa
     (the same grid, its landings reused, then the bounded search), and its shrink is the fitted gap
     over g0. The data's shrink is that same 1-D fit's gap over the current gap (before any joint
     re-fit, so data and members get the same freedom). Passed when the data's shrink lies below
-    :func:`directed_bound` of the members' shrinks."""
+    :func:`directed_bound` of the members' shrinks, corrected for the ``candidates`` it was the best
+    of."""
     nf = cand.get("null_fit")
     if not nf or not members or not current_gap > 0:
         return {"passed": False, "why": "no 1-D fit or no members"}
@@ -630,9 +637,9 @@ def _directed_test(sim: _Simulator, cand: dict, members: list, current_gap: floa
         if math.isfinite(fit["gap"]):
             shrinks.append(fit["gap"] / g0)
     data = nf["gap"] / current_gap
-    bound = directed_bound(shrinks)
+    bound = directed_bound(shrinks, candidates)
     return {"passed": bool(data < bound), "shrink": data, "member_shrinks": shrinks, "bound": bound,
-            "parameter": nf["param"].name}
+            "candidates": candidates, "parameter": nf["param"].name}
 
 
 def above_gate(current_gap: float, gate: float, produced: list, score: float, base_score: float) -> bool:
@@ -878,7 +885,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                 # inside the gate: the directed test, against the members of the gate of the model
                 # the step starts from
                 members_now = (gate_now[1] if gate_now is not None else noise).get("member_sims", [])
-                directed_info = _directed_test(sim, best, members_now, current_gap, maxiter)
+                directed_info = _directed_test(sim, best, members_now, current_gap, maxiter,
+                                               candidates=sum(math.isfinite(r["score"]) for r in results))
                 above = directed_info["passed"]
             own = None
             if above and records > 1 and not relative and not (fixed and not broken) and noise_gap is None \
