@@ -584,6 +584,8 @@ def _joint_refit(sim: _Simulator, terms: list[Term], r: dict, maxiter: int) -> N
 #: the directed test's level: the data's shrink must lie below the one-sided 95 % lower
 #: prediction bound of the noise members' shrinks (as the gate's upper bound, :func:`gate_bound`)
 DIRECTED_LEVEL = 0.95
+# the noise gate's drop points with repeated records (random within the disc, as records are)
+MEMBER_SEED = 21
 
 
 def directed_bound(shrinks: list[float], candidates: int = 1) -> float:
@@ -1043,8 +1045,9 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     The gate is the one-sided 95 % prediction bound of one more member gap, mean + t(0.95, k-1)
     sqrt(1 + 1/k) s over the k member gaps (at least their largest), never below ``NOISE_GAP_MIN``
     (the resolution of the features). With repeated landings (``sim.records`` > 1) each member
-    is the mean of as many drops as there are records, so the gate has the data's statistics."""
-    from .ensemble import DROP_RADIUS_M, drop_offsets
+    is the mean of as many drops as there are records, each from a random point of the 5 um disc
+    as a record is, so the gate has the data's statistics."""
+    from .ensemble import DROP_RADIUS_M, drop_offsets, random_drop_offset
     from .features import ensemble_features
 
     if members < 1:
@@ -1056,9 +1059,13 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     radius = sim.radius or DROP_RADIUS_M
     if size > 1:
         # repeated landings: the data are the means of ``size`` records, so each member is the mean
-        # of ``size`` drops, from points of the circle between the model ensemble's own (member g
-        # turned by (g + 1) / (members + 1) of their spacing)
-        groups = [drop_offsets(size, radius, (g + 1) / (members + 1)) for g in range(members)]
+        # of ``size`` drops, each from a random point of the disc of the AMB's position error, as
+        # records are (ensemble.random_drop_offset; seeded, so a diagnosis repeats). Until session 21
+        # they were points of its rim: 5 um off centre against the records' 3.3 um on average, so
+        # the members landed wilder than the records (bench clean 1 um: data gap 0.154 below all
+        # four members' 0.21-0.66, gate 1.07)
+        rng = np.random.default_rng(MEMBER_SEED + 1000 * members + size)
+        groups = [[random_drop_offset(rng, radius) for _ in range(size)] for _ in range(members)]
     elif sim.ensemble > 1:
         # single drops between the ensemble's own drop points (half a step round the circle)
         groups = [[o] for o in drop_offsets(members, radius, 0.5)]
@@ -1090,7 +1097,9 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     gate = gate_bound(gaps)
     what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
     rate = (sigma or {}).get(RATE_KEY)
-    return {"gate": gate, "source": f"{what} from a {1e6 * radius:g} um circle" + (" with the record's sensor noise"
+    where = "random points of a" if size > 1 else "a"
+    shape = "disc" if size > 1 else "circle"
+    return {"gate": gate, "source": f"{what} from {where} {1e6 * radius:g} um {shape}" + (" with the record's sensor noise"
                                                                                    if sigma else "")
             + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rotorlanding.cli import main
-from rotorlanding.diagnose_run import Point, Repeated, _noise_gate, records_for_diagnosis, run_diagnose
+from rotorlanding.diagnose_run import MEMBER_SEED, Point, Repeated, _noise_gate, records_for_diagnosis, run_diagnose
 from rotorlanding.ensemble import drop_offsets, random_drop_offset
 from rotorlanding.errors import InputError
 from rotorlanding.features import ensemble_features, gap
@@ -69,8 +69,13 @@ def test_gate_members_are_means_of_as_many_drops_as_records():
                                 for y, z in map(_offset, drop_offsets(3))])]
     noise = _noise_gate(sim, model, 4, None)
     assert len(sim.asked) == 4 * 3 and "means of 3 drops" in noise["source"]
-    own = [_offset(o) for o in drop_offsets(3)]
-    assert min(math.dist(p, q) for p in sim.asked for q in own) > 1e-6   # none of the model's own drop points
+    # each drop from a random point of the 5 um disc, as a record is (not of its rim: the records'
+    # points lie 3.3 um off centre on average, and the members dropped from the rim landed wilder)
+    radii = [math.hypot(*p) for p in sim.asked]
+    assert max(radii) <= 5e-6 * (1 + 1e-9) and min(radii) < 0.9 * 5e-6 and len(set(sim.asked)) == len(sim.asked)
+    # the points are those the records' own draw gives with the gate's seed (a diagnosis repeats)
+    rng = np.random.default_rng(MEMBER_SEED + 1000 * 4 + 3)
+    assert sim.asked == [_offset(random_drop_offset(rng)) for _ in range(4 * 3)]
     # each member gap is the gap of the mean of its 3 drops (computed here independently)
     expect = []
     for g in range(4):
