@@ -15,7 +15,8 @@ def series(*ks): return 1.0 / sum(1.0 / k for k in ks)
 K_BALL, K_HZ = 1.5e8, 6e8
 def ksup(krib): return series(krib, K_BALL, K_HZ)
 
-def evaluate(data, krib=6.3e7, speeds=(3000, 7000, 10000), show=True, fmax=160):
+def evaluate(data, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160):
+    """Mass, static sleeve reactions and the modes up to ``fmax`` at ``speeds`` (returned, not printed)."""
     # every support that stands in for a landed catcher bearing at k_sup; an in_landing one (the
     # motor coupling) keeps its own stiffness (the same rule as fit-modes)
     data = rotor_with(data, {}, ksup(krib))
@@ -31,11 +32,16 @@ def evaluate(data, krib=6.3e7, speeds=(3000, 7000, 10000), show=True, fmax=160):
     out = {"mass": fe.mass, "reactions": reac, "modes": {}}
     for sp in speeds:
         out["modes"][sp] = [(w, round(f, 1), round(a, 2), round(b, 2)) for w, f, a, b in mode_rows(sysm, fe, sp, fmax)]
-    if show:
-        print(f"mass {fe.mass:.1f} kg, Ip total {fe.polar_inertia:.2f}; reactions " + ", ".join(f"{k} {v:.0f} N" for k, v in reac.items()), f"k_sup {ksup(krib):.3g}")
-        for sp, fw in out["modes"].items():
-            print(f"  {sp:5d} rpm: " + "  ".join(f"{w}{f}(DE{a},NDE{b})" for w, f, a, b in fw))
+    out["polar_inertia"], out["k_sup"] = fe.polar_inertia, ksup(krib)
     return out
+
+
+def report(out) -> str:
+    lines = [f"mass {out['mass']:.1f} kg, Ip total {out['polar_inertia']:.2f}; reactions "
+             + ", ".join(f"{k} {v:.0f} N" for k, v in out["reactions"].items()) + f" k_sup {out['k_sup']:.3g}"]
+    lines += [f"  {sp:5d} rpm: " + "  ".join(f"{w}{f}(DE{a},NDE{b})" for w, f, a, b in fw)
+              for sp, fw in out["modes"].items()]
+    return "\n".join(lines)
 
 def mode_rows(sysm, fe, speed_rpm, fmax=160):
     """(whirl sense, frequency [Hz], DE and NDE sleeve share of the largest nodal amplitude) of every
@@ -57,7 +63,30 @@ def load(path, sets=()):
         set_dotted(data, k, float(v), must_exist=True)
     return data
 
+def main(argv: list[str]) -> int:
+    from rotorlanding.errors import InputError
+
+    if not argv:
+        print("usage: python docs/studies/modal_screen.py ROTOR.toml [key=value ...]", file=sys.stderr)
+        return 2
+    try:
+        for kv in argv[1:]:
+            if "=" not in kv:
+                raise InputError(kv, kv, "key=value with a number")
+            try:
+                float(kv.split("=", 1)[1])
+            except ValueError:
+                raise InputError(kv.split("=", 1)[0], kv.split("=", 1)[1], "a number") from None
+        d = load(argv[0], argv[1:])
+        results = [(kr, evaluate(d, kr)) for kr in (6.3e7, 3.15e7, 9.45e7)]
+    except (InputError, KeyError, TypeError, ValueError) as exc:  # a rotor file this screen cannot read
+        print(f"{argv[0]}: {exc}", file=sys.stderr)
+        return 2
+    for kr, out in results:
+        print("k_rib", kr)
+        print(report(out))
+    return 0
+
+
 if __name__ == "__main__":
-    d = load(sys.argv[1], sys.argv[2:])
-    for kr in (6.3e7, 3.15e7, 9.45e7):
-        print("k_rib", kr); evaluate(d, kr)
+    raise SystemExit(main(sys.argv[1:]))
