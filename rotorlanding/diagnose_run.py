@@ -1097,10 +1097,8 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     gate = gate_bound(gaps)
     what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
     rate = (sigma or {}).get(RATE_KEY)
-    where = "random points of a" if size > 1 else "a"
-    shape = "disc" if size > 1 else "circle"
-    return {"gate": gate, "source": f"{what} from {where} {1e6 * radius:g} um {shape}" + (" with the record's sensor noise"
-                                                                                   if sigma else "")
+    points = f"random points of a {1e6 * radius:g} um disc" if size > 1 else f"a {1e6 * radius:g} um circle"
+    return {"gate": gate, "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
             + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),
             "member_directions": directions, "member_sims": kept}
