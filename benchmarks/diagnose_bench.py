@@ -223,7 +223,8 @@ def main(argv=None) -> int:
     ap.add_argument("--ensemble", type=int, default=1, help="diagnose --ensemble: drops per model variant (default 1)")
     ap.add_argument("--repeats", type=int, default=1,
                     help="records per case: repeated landings of the rig, each from a random point of the 5 um "
-                         "circle's disc, diagnosed together (default 1: one record, the rig dropped centred)")
+                         "circle's disc, diagnosed together (default 1: one record, also from a random point of the "
+                         "disc, seeded per case)")
     ap.add_argument("--directed", action="store_true",
                     help="diagnose's directed test inside the noise gate (diagnose_run._directed_test)")
     a = ap.parse_args(argv)

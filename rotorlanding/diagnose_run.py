@@ -13,7 +13,7 @@ that the package attribute ``rotorlanding.diagnose`` is the function.
      ``features.ABSENT_FEATURE_DISTANCE``); repeated landings of one point (several records,
      :class:`Repeated`) are compared as the means of their features against the model's ensemble
      of as many drops;
-  b. the noise gate from the data (:func:`_noise_gate`): the model dropped from a 5 um circle with
+  b. the noise gate from the data (:func:`_noise_gate`): the model dropped from a 5 um disc with
      the record's own sensor noise (:func:`sensor_noise`), the 95 % prediction bound of one more
      member's gap (with repeated landings the members are ensembles of as many drops as there
      are records, so the gate has the statistics of the data's means); a user-given drop instant is checked against the detected one;
@@ -53,7 +53,7 @@ from .safeio import atomic_write_text, save_figure
 #: the noise gate is estimated (:func:`_noise_gate`); this is its floor: on clean data (the
 #: model against its own resampled, noisy output) the gap is 0.03-0.1
 NOISE_GAP_MIN = 0.1
-#: drops of the model that estimate the gate (ensemble members from a 5 um circle)
+#: drops of the model that estimate the gate (drops from random points of a 5 um disc)
 NOISE_MEMBERS = 4
 #: a named effect must remove at least this share of the remaining gap; with two missing effects
 #: the first one found can only remove its own part (e.g. 48 % for windage + ribbon cross-coupling)
@@ -584,7 +584,7 @@ def _joint_refit(sim: _Simulator, terms: list[Term], r: dict, maxiter: int) -> N
 #: the directed test's level: the data's shrink must lie below the one-sided 95 % lower
 #: prediction bound of the noise members' shrinks (as the gate's upper bound, :func:`gate_bound`)
 DIRECTED_LEVEL = 0.95
-# the noise gate's drop points with repeated records (random within the disc, as records are)
+# the seed of the noise gate's drop points (random within the disc, as records are)
 MEMBER_SEED = 21
 
 
@@ -1039,14 +1039,16 @@ def _prediction_half_width(values: list[float], level: float) -> float:
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
                 fixed: list[str] | None = None, journals=DEFAULT_JOURNALS) -> dict:
     """The gap noise alone produces, estimated, not assumed: the model as it is dropped from
-    ``members`` points of a 5 um circle (``ensemble.drop_offsets``: a real rotor is never dropped
-    exactly centred, and a rattling landing is chaotic), with the measured record's own sensor
-    noise added to its series; each member, taken as the measurement, against the centred drop.
+    ``members`` random points of the 5 um disc (``ensemble.random_drop_offset``, seeded: a real
+    rotor is never dropped exactly centred, and a rattling landing is chaotic), with the measured
+    record's own sensor noise added to its series; each member, taken as the measurement, against
+    the centred drop. Against an ensemble model (``sim.ensemble`` > 1) a single record's members
+    fall between the ensemble's drop points on the circle.
     The gate is the one-sided 95 % prediction bound of one more member gap, mean + t(0.95, k-1)
     sqrt(1 + 1/k) s over the k member gaps (at least their largest), never below ``NOISE_GAP_MIN``
     (the resolution of the features). With repeated landings (``sim.records`` > 1) each member
-    is the mean of as many drops as there are records, each from a random point of the 5 um disc
-    as a record is, so the gate has the data's statistics."""
+    is the mean of as many drops as there are records, each from a random point of the disc as a
+    record is, so the gate has the data's statistics."""
     from .ensemble import DROP_RADIUS_M, drop_offsets, random_drop_offset
     from .features import ensemble_features
 
@@ -1070,8 +1072,12 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
         # single drops between the ensemble's own drop points (half a step round the circle)
         groups = [[o] for o in drop_offsets(members, radius, 0.5)]
     else:
+        # one record against one centred drop: the record fell from some point of the disc, so the
+        # members do too, as with repeated records. Until session 22 they fell from its rim, 5 um
+        # off centre against a record's 3.3 um on average, and landed wilder than the records
         radius = DROP_RADIUS_M
-        groups = [[o] for o in drop_offsets(members)]
+        rng = np.random.default_rng(MEMBER_SEED + 1000 * members + size)
+        groups = [[random_drop_offset(rng, radius)] for _ in range(members)]
     flat = sim.features([list(fixed or []) + o for grp in groups for o in grp], noise=sigma or None, single=True)
     member_sims = []
     for g in range(len(groups)):
@@ -1097,7 +1103,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     gate = gate_bound(gaps)
     what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
     rate = (sigma or {}).get(RATE_KEY)
-    points = f"random points of a {1e6 * radius:g} um disc" if size > 1 else f"a {1e6 * radius:g} um circle"
+    points = f"a {1e6 * radius:g} um circle" if size == 1 and sim.ensemble > 1 else f"random points of a {1e6 * radius:g} um disc"
     return {"gate": gate, "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
             + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),

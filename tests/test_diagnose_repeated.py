@@ -84,9 +84,17 @@ def test_gate_members_are_means_of_as_many_drops_as_records():
                 "DE_horizontal_max_m": (float(np.mean([1e-4 + 4.0 * y for y, _ in drops])), 2e-5)}
         expect.append(gap(mean, model[0])[0])
     assert noise["member_gaps"] == pytest.approx(expect, rel=1e-12)
-    # one record: single drops as before
+    # one record against one drop: single drops, from random points of the disc too (a record
+    # falls from some point of it), seeded as with repeated records
     sim1 = _FakeSim(records=1, ensemble=1)
-    assert "4 drops from a 5 um circle" in _noise_gate(sim1, model, 4, None)["source"] and len(sim1.asked) == 4
+    assert "4 drops from random points of a 5 um disc" in _noise_gate(sim1, model, 4, None)["source"]
+    rng = np.random.default_rng(MEMBER_SEED + 1000 * 4 + 1)
+    assert sim1.asked == [_offset(random_drop_offset(rng)) for _ in range(4)]
+    assert min(math.hypot(*p) for p in sim1.asked) < 0.9 * 5e-6
+    # one record against an ensemble model: single drops between its drop points on the circle
+    sim2 = _FakeSim(records=1, ensemble=4)
+    assert "4 drops from a 5 um circle" in _noise_gate(sim2, model, 4, None)["source"]
+    assert all(math.hypot(*p) == pytest.approx(5e-6) for p in sim2.asked)
 
 
 @pytest.fixture
