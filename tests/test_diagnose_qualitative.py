@@ -1,7 +1,10 @@
-"""A feature the data show that neither the model nor any noisy off-centre drop of it produces is
-named even below the noise gate (the bench's weak radial friction, issue 20 second round): the
-model without radial friction is so chaotic that its gate (2.1) sat above the gap (1.99), though its
-race never spins up and the data's does."""
+"""A feature the data show that neither the model nor any noisy off-centre drop of it produces
+(the bench's weak radial friction, issue 20 second round): the model without radial friction never
+spins its race up and the data's does. Until session 22 the gate's members fell from the 5 um
+circle's rim and this model was so chaotic that its gate (2.1) sat above the gap (1.99), so the
+feature alone named radial friction below the gate. With the members from random points of the
+disc, as a record falls, the gate is 1.63, below the gap; the rule below the gate is tested on its
+own in tests/test_diagnose_repeated.py (``above_gate`` with a produced feature)."""
 
 import sys
 from pathlib import Path
@@ -10,7 +13,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 sys.path.insert(0, str(Path(__file__).parent))
 
 
-def test_a_race_spin_up_no_noise_member_produces_names_radial_friction_below_the_gate(tmp_path):
+def test_a_race_spin_up_no_noise_member_produces_is_recorded_and_radial_friction_named(tmp_path):
     import diagnose_bench as bench
     from sensor_model import C, known_rig_model, write_record
 
@@ -29,10 +32,12 @@ def test_a_race_spin_up_no_noise_member_produces_names_radial_friction_below_the
     res = diagnose(meas, model, clearance=C, candidates=["radial_friction", "windage"], parameters=[], workers=2,
                    maxiter=3, info=info)
     step = res["steps"][0]
-    assert res["gap_before"] < res["noise_gate"], (res["gap_before"], res["noise_gate"])  # the gate alone: silent
+    # the chaotic model's gate, from drops of the disc, is of the size of the gap (1.63 against 1.99)
+    assert 0.5 * res["gap_before"] < res["noise_gate"] < res["gap_before"], (res["gap_before"], res["noise_gate"])
     assert res["absent_in_model_before"] == ["DE_race_spinup_s"]
     assert "DE_race_spinup_s" not in res["noise"]["member_features"]
     assert res["named_effect"] == "radial_friction", step
+    # the candidate produces the feature the data show and noise cannot: recorded with the step
     assert step["produces_absent_feature"] == ["DE_race_spinup_s"]
-    assert "a feature noise cannot produce" in step["significant_by"]
-    assert res["gap_after"] <= 0.7 * res["gap_before"]     # the 30 % rule still applies
+    assert step["significant_by"] == "relative improvement"   # above the gate: no qualitative reason needed
+    assert res["gap_after"] <= 0.7 * res["gap_before"]     # the 30 % rule applies
