@@ -334,6 +334,10 @@ def cmd_diagnose(args) -> int:
     print(f"gap before {res['gap_before']:.3f}, after {res['gap_after']:.3f} (noise gate {res['noise_gate']:.3f}, "
           f"{res['noise']['source']}); explanation: {res['explanation']}; named effect: {res['named_effect']} "
           f"({res['simulations']} simulations, {res['wall_s']:.0f} s)")
+    for label, m in (res.get("gate_margins") or {}).items():
+        if m.get("within_one_se"):
+            print(f"  note: the gap {label} ({m['gap']:.3f}) is within one standard error ({m['gate_se']:.3f}) of its "
+                  f"noise gate ({m['gate']:.3f}): the verdict hangs on the gate's estimate; repeated records settle it")
     if res["absent_in_model_before"]:
         print("  the model cannot produce: " + ", ".join(res["absent_in_model_before"]))
     for n in res["named_effects"]:

@@ -994,6 +994,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             "record_spread": _journal_rows(measured.spread, journals) if isinstance(measured, Repeated) else {},
             "noise": _public(noise), "noise_gate": gate, "noise_final": _public(noise_final),
             "noise_gate_final": final_gate,
+            "gate_margins": {"before": gate_margin(gap_before, gate, noise.get("gate_se")),
+                             "after": gate_margin(current_gap, final_gate,
+                                                  (noise_final or noise).get("gate_se"))},
             "noise_gates": noise_history, "warnings": warnings, "time_offset": info.get("time_offset"),
             "absent_in_model_before": _absent_in_model(rows_before),
             "absent_in_model_after": _absent_in_model(current_rows),
@@ -1025,6 +1028,47 @@ def gate_bound(gaps: list[float], floor: float = NOISE_GAP_MIN) -> float:
     if len(gaps) >= 2:
         gate = max(gate, float(np.mean(gaps)) + _prediction_half_width(gaps, 0.95))
     return gate
+
+
+def gate_standard_error(gaps: list[float], floor: float = NOISE_GAP_MIN) -> float | None:
+    """The standard error of the gate :func:`gate_bound` as an estimate, where it is the prediction
+    bound G = m + c s (m, s the mean and standard deviation of k member gaps taken as normal,
+    c = t(0.95, k-1) sqrt(1 + 1/k)): m and s are independent, Var m = sigma^2 / k and
+    Var s = sigma^2 (1 - c4^2), so SE(G) = sigma sqrt(1/k + c^2 (1 - c4^2)), sigma estimated by s / c4
+    (c4(k) = sqrt(2 / (k-1)) Gamma(k/2) / Gamma((k-1)/2), the bias of s). With 4 members it is
+    1.14 sigma: the gate is itself a noisy number (session 21: it moved by -40 % to +62 % with the
+    members' draw), so a gap within about one SE of it is a verdict that hangs on the draw. None
+    where the gate is not the bound (fewer than 2 members, or set by the largest member or the floor)."""
+    k = len(gaps)
+    if k < 2:
+        return None
+    s = float(np.std(gaps, ddof=1))
+    if s <= 1e-12 * max(1e-300, float(np.max(np.abs(gaps)))):
+        return None
+    bound = float(np.mean(gaps)) + _prediction_half_width(gaps, 0.95)
+    if bound < max([floor] + list(gaps)):
+        return None
+    return prediction_bound_se(k, s)
+
+
+def prediction_bound_se(k: int, s: float, level: float = 0.95) -> float:
+    """The standard error of m + c s over k normal values of sample standard deviation ``s``
+    (c = t(level, k-1) sqrt(1 + 1/k)), :func:`gate_standard_error`'s formula."""
+    from scipy.stats import t as student_t
+
+    c = float(student_t.ppf(level, k - 1)) * math.sqrt(1 + 1 / k)
+    c4 = math.sqrt(2.0 / (k - 1)) * math.exp(math.lgamma(k / 2) - math.lgamma((k - 1) / 2))
+    return float(s / c4 * math.sqrt(1.0 / k + c * c * (1.0 - c4 * c4)))
+
+
+def gate_margin(gap: float, gate: float, se: float | None) -> dict:
+    """A gap against its noise gate: the margin (gap - gate), the gate's standard error
+    (:func:`gate_standard_error`; None for a given gate or one set by a member or the floor) and
+    whether the margin is within one standard error, where the verdict (above or inside the
+    gate) would flip with another draw of the members."""
+    margin = gap - gate if math.isfinite(gap) else float("nan")
+    return {"gap": gap, "gate": gate, "margin": margin, "gate_se": se,
+            "within_one_se": bool(se is not None and math.isfinite(margin) and abs(margin) < se)}
 
 
 def _prediction_half_width(values: list[float], level: float) -> float:
@@ -1104,7 +1148,7 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
     rate = (sigma or {}).get(RATE_KEY)
     points = f"a {1e6 * radius:g} um circle" if size == 1 and sim.ensemble > 1 else f"random points of a {1e6 * radius:g} um disc"
-    return {"gate": gate, "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
+    return {"gate": gate, "gate_se": gate_standard_error(gaps), "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
             + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),
             "member_directions": directions, "member_sims": kept}
@@ -1205,6 +1249,19 @@ def _fmt(v) -> str:
     return f"{v:.4g}"
 
 
+def _margin_text(label: str, m: dict) -> str | None:
+    """One gap against its gate in words (:func:`gate_margin`), or None without a standard error."""
+    if m.get("gate_se") is None or not math.isfinite(m["margin"]):
+        return None
+    side = "above" if m["margin"] > 0 else "inside"
+    text = (f"gap {label} {m['gap']:.3f} is {abs(m['margin']):.3f} {side} the gate {m['gate']:.3f} "
+            f"(standard error {m['gate_se']:.3f}, {abs(m['margin']) / m['gate_se']:.2f} of them)")
+    if m["within_one_se"]:
+        text += (": **within one standard error**, so whether it is above the noise hangs on the gate's draw; "
+                 "repeated records of the operating point settle it")
+    return text
+
+
 def _step_lines(steps: list[dict]) -> list[str]:
     """The report's lines on each step's joint re-fit and rival. A step's re-fit is of the terms
     named before it together with the step's best candidate: when that candidate is not named (the
@@ -1248,6 +1305,11 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
              f"Noise gate: **{res['noise_gate']:.3f}** ({res['noise']['source']}; gaps of the members: "
              f"{', '.join(f'{g:.3f}' for g in res['noise']['member_gaps']) or '-'})"
              + (f"; of the final model: **{res['noise_gate_final']:.3f}**" if res.get("noise_final") else "") + ".", ""]
+    margins = res.get("gate_margins") or {}
+    said = [_margin_text(k, margins[k]) for k in ("before", "after") if margins.get(k)]
+    if any(said):
+        lines += ["Margins against the gate's own standard error (the gate is estimated from a few drops, so it "
+                  "moves with their draw): " + "; ".join(t for t in said if t) + ".", ""]
     if res.get("records", 1) > 1:
         spread = sorted(res.get("record_spread", {}).items())
         lines += [f"Measured: **{res['records']} records** of repeated landings, compared as their mean features with "
