@@ -33,6 +33,7 @@ that the package attribute ``rotorlanding.diagnose`` is the function.
 from __future__ import annotations
 
 import copy
+import functools
 import json
 import math
 import time
@@ -821,6 +822,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
         current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
         adjusted: list[str] = []
         step_gate, gate_now = gate, None   # gate_now: (overrides, _noise_gate) of the model named so far
+        step_se = noise.get("gate_se")      # the standard error of the gate the step is judged against
         own = None                         # (overrides, _noise_gate) of the last step's best candidate
         for k_step in range(max_effects):
             lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
@@ -923,7 +925,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                           "refit": refit_info,
                           "indistinguishable_from": rival["effect"] if rival and significant
                           and rival["score"] < best["score"] + 2.0 else None,
-                          "gate": step_gate, "own_gate": own[1]["gate"] if own else None, "directed": directed_info,
+                          "gate": step_gate, "gate_margin": gate_margin(current_gap, step_gate, step_se),
+                          "own_gate": own[1]["gate"] if own else None, "directed": directed_info,
                           "significant_by": significant_by})
             if not significant:
                 break
@@ -952,6 +955,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                                        journals=journals))
                     noise_history.append(gate_now[1]["gate"])
                 step_gate = min(gate, gate_now[1]["gate"])
+                step_se = (noise if step_gate == gate else gate_now[1]).get("gate_se")
         if terms and noise_gap is None:
             # what stays unexplained is judged against the gate of the final model: a landing with the
             # named changes can be more (or less) chaotic than without them. When the last step named
@@ -1054,9 +1058,7 @@ def gate_standard_error(gaps: list[float], floor: float = NOISE_GAP_MIN) -> floa
 def prediction_bound_se(k: int, s: float, level: float = 0.95) -> float:
     """The standard error of m + c s over k normal values of sample standard deviation ``s``
     (c = t(level, k-1) sqrt(1 + 1/k)), :func:`gate_standard_error`'s formula."""
-    from scipy.stats import t as student_t
-
-    c = float(student_t.ppf(level, k - 1)) * math.sqrt(1 + 1 / k)
+    c = _prediction_factor(k, level)
     c4 = math.sqrt(2.0 / (k - 1)) * math.exp(math.lgamma(k / 2) - math.lgamma((k - 1) / 2))
     return float(s / c4 * math.sqrt(1.0 / k + c * c * (1.0 - c4 * c4)))
 
@@ -1074,10 +1076,17 @@ def gate_margin(gap: float, gate: float, se: float | None) -> dict:
 def _prediction_half_width(values: list[float], level: float) -> float:
     """t(level, k-1) sqrt(1 + 1/k) s over k >= 2 values taken as normal: how far one more value may
     lie from their mean, one-sided (the noise gate's upper bound, the directed test's lower one)."""
+    k = len(values)
+    return float(_prediction_factor(k, level) * np.std(values, ddof=1))
+
+
+@functools.lru_cache(maxsize=64)
+def _prediction_factor(k: int, level: float) -> float:
+    """t(level, k-1) sqrt(1 + 1/k) (cached: scipy's t quantile costs ~0.3 ms a call, and the gate's
+    Monte Carlo test calls it tens of thousands of times)."""
     from scipy.stats import t as student_t
 
-    k = len(values)
-    return float(student_t.ppf(level, k - 1) * math.sqrt(1 + 1 / k) * np.std(values, ddof=1))
+    return float(student_t.ppf(level, k - 1)) * math.sqrt(1 + 1 / k)
 
 
 def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | None,
@@ -1278,6 +1287,9 @@ def _step_lines(steps: list[dict]) -> list[str]:
             else:
                 lines.append(f"Step {i}: the best candidate, {best}, re-fitted jointly with everything named before it: "
                              f"{fit}; not named (it does not pay for itself or stays within the noise).")
+        m = stp.get("gate_margin")
+        if i > 1 and m and _margin_text("", m):
+            lines.append(f"Step {i}: the " + _margin_text("it started from", m) + ".")
         if stp.get("indistinguishable_from"):
             lines.append(f"Step {i}: {stp['named']} and {stp['indistinguishable_from']} explain the gap about equally "
                          "(scores within 2): the data given do not tell them apart.")

@@ -60,3 +60,16 @@ def test_the_margin_and_its_words():
     assert not given["within_one_se"] and _margin_text("before", given) is None
     assert not gate_margin(float("inf"), 0.3, 0.1)["within_one_se"]
     assert math.isnan(gate_margin(float("nan"), 0.3, 0.1)["margin"])
+
+
+def test_a_later_step_states_its_margin():
+    from rotorlanding.diagnose_run import _step_lines
+
+    steps = [{"gate_margin": gate_margin(0.9, 0.3, 0.05), "named": "windage"},
+             {"gate_margin": gate_margin(0.266, 0.244, 0.05), "named": None},
+             {"gate_margin": gate_margin(0.266, 0.244, None), "named": None}]
+    lines = _step_lines(steps)
+    # the first step's margin is the report's "gap before" line; the second's is within one SE;
+    # the third's gate has no standard error (a given gate): nothing said
+    assert len(lines) == 1 and lines[0].startswith("Step 2: the gap it started from 0.266 is 0.022 above the gate 0.244")
+    assert "within one standard error" in lines[0]
