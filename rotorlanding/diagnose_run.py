@@ -1112,25 +1112,20 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     gaps, produced, directions, kept = [], set(), [], []
     size = max(1, sim.records)
     radius = sim.radius or DROP_RADIUS_M
-    if size > 1:
-        # repeated landings: the data are the means of ``size`` records, so each member is the mean
-        # of ``size`` drops, each from a random point of the disc of the AMB's position error, as
-        # records are (ensemble.random_drop_offset; seeded, so a diagnosis repeats). Until session 21
-        # they were points of its rim: 5 um off centre against the records' 3.3 um on average, so
-        # the members landed wilder than the records (bench clean 1 um: data gap 0.154 below all
-        # four members' 0.21-0.66, gate 1.07)
-        rng = np.random.default_rng(MEMBER_SEED + 1000 * members + size)
-        groups = [[random_drop_offset(rng, radius) for _ in range(size)] for _ in range(members)]
-    elif sim.ensemble > 1:
-        # single drops between the ensemble's own drop points (half a step round the circle)
+    on_circle = size == 1 and sim.ensemble > 1
+    if on_circle:
+        # one record against an ensemble model: single drops between the ensemble's own drop points
+        # (half a step round the circle)
         groups = [[o] for o in drop_offsets(members, radius, 0.5)]
     else:
-        # one record against one centred drop: the record fell from some point of the disc, so the
-        # members do too, as with repeated records. Until session 22 they fell from its rim, 5 um
-        # off centre against a record's 3.3 um on average, and landed wilder than the records
-        radius = DROP_RADIUS_M
+        # each member is as many drops as there are records (the data are their mean), each from a
+        # random point of the disc of the AMB's position error, as a record falls
+        # (ensemble.random_drop_offset; seeded, so a diagnosis repeats). Until session 21 (repeated
+        # records) and 22 (one record) they fell from its rim: 5 um off centre against the records'
+        # 3.3 um on average, so the members landed wilder than the records (bench clean 1 um, 4
+        # records: data gap 0.154 below all four members' 0.21-0.66, gate 1.07)
         rng = np.random.default_rng(MEMBER_SEED + 1000 * members + size)
-        groups = [[random_drop_offset(rng, radius)] for _ in range(members)]
+        groups = [[random_drop_offset(rng, radius) for _ in range(size)] for _ in range(members)]
     flat = sim.features([list(fixed or []) + o for grp in groups for o in grp], noise=sigma or None, single=True)
     member_sims = []
     for g in range(len(groups)):
@@ -1156,8 +1151,9 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     gate = gate_bound(gaps)
     what = f"{len(gaps)} drops" if size == 1 else f"{len(gaps)} means of {size} drops (as many as the records)"
     rate = (sigma or {}).get(RATE_KEY)
-    points = f"a {1e6 * radius:g} um circle" if size == 1 and sim.ensemble > 1 else f"random points of a {1e6 * radius:g} um disc"
-    return {"gate": gate, "gate_se": gate_standard_error(gaps), "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
+    points = f"a {1e6 * radius:g} um circle" if on_circle else f"random points of a {1e6 * radius:g} um disc"
+    return {"gate": gate, "gate_se": gate_standard_error(gaps),
+            "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
             + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),
             "member_directions": directions, "member_sims": kept}
@@ -1287,9 +1283,9 @@ def _step_lines(steps: list[dict]) -> list[str]:
             else:
                 lines.append(f"Step {i}: the best candidate, {best}, re-fitted jointly with everything named before it: "
                              f"{fit}; not named (it does not pay for itself or stays within the noise).")
-        m = stp.get("gate_margin")
-        if i > 1 and m and _margin_text("", m):
-            lines.append(f"Step {i}: the " + _margin_text("it started from", m) + ".")
+        said = _margin_text("it started from", stp["gate_margin"]) if i > 1 and stp.get("gate_margin") else None
+        if said:
+            lines.append(f"Step {i}: the {said}.")
         if stp.get("indistinguishable_from"):
             lines.append(f"Step {i}: {stp['named']} and {stp['indistinguishable_from']} explain the gap about equally "
                          "(scores within 2): the data given do not tell them apart.")
@@ -1318,10 +1314,10 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
              f"{', '.join(f'{g:.3f}' for g in res['noise']['member_gaps']) or '-'})"
              + (f"; of the final model: **{res['noise_gate_final']:.3f}**" if res.get("noise_final") else "") + ".", ""]
     margins = res.get("gate_margins") or {}
-    said = [_margin_text(k, margins[k]) for k in ("before", "after") if margins.get(k)]
-    if any(said):
+    said = [t for t in (_margin_text(k, margins[k]) for k in ("before", "after") if margins.get(k)) if t]
+    if said:
         lines += ["Margins against the gate's own standard error (the gate is estimated from a few drops, so it "
-                  "moves with their draw): " + "; ".join(t for t in said if t) + ".", ""]
+                  "moves with their draw): " + "; ".join(said) + ".", ""]
     if res.get("records", 1) > 1:
         spread = sorted(res.get("record_spread", {}).items())
         lines += [f"Measured: **{res['records']} records** of repeated landings, compared as their mean features with "
