@@ -176,6 +176,9 @@ def run_case(job) -> dict:
     folder.mkdir(parents=True, exist_ok=True)
     marker = _marker(job)
     marker.write_text(str(os.getpid()))
+    # the inputs are stored once the case has finished with them (_finished compares them): a case
+    # that fails leaves none, so an older summary in its folder is never taken for its result
+    (folder / "case.json").unlink(missing_ok=True)
     w0 = time.perf_counter()
     try:
         sc = load_scenario(base, overrides)
@@ -183,6 +186,8 @@ def run_case(job) -> dict:
         row.update(summary_row(s))
         if not s.get("complete", True):
             row["status"], row["error"] = "incomplete", s.get("message", "")
+        else:
+            atomic_write_text(folder / "case.json", json.dumps(_case_inputs(base, overrides), indent=2))
     except Exception as exc:  # a failing case is recorded, the sweep goes on
         row.update(_failed_row(idx, f"{type(exc).__name__}: {exc}", out_dir, traceback.format_exc()))
     row["wall_s"] = round(time.perf_counter() - w0, 3)
@@ -209,9 +214,24 @@ def summary_row(s: dict) -> dict:
             "energy_dissipated_j": s["energy"]["dissipated_total_j"]}
 
 
-def _finished(out_dir: Path, idx: int):
-    f = out_dir / "cases" / f"case_{idx:04d}" / "summary.json"
+def _case_inputs(base, overrides) -> dict:
+    """What made a case: the base scenario and the case's overrides (stored beside its results)."""
+    return {"base": str(base), "overrides": [str(o) for o in overrides]}
+
+
+def _finished(out_dir: Path, idx: int, inputs: dict | None = None):
+    """The summary of case ``idx`` if it finished with these ``inputs``. A case folder of the same
+    number from a sweep file since edited (other values for that case) is not reused: it was,
+    by index alone, and reported another case's results under the new values."""
+    folder = out_dir / "cases" / f"case_{idx:04d}"
+    f = folder / "summary.json"
     if f.is_file():
+        if inputs is not None:
+            try:
+                if json.loads((folder / "case.json").read_text()) != inputs:
+                    return None
+            except (OSError, ValueError):
+                return None
         s = json.loads(f.read_text())
         if s.get("complete") and "whirl" in s:
             return s
@@ -278,7 +298,7 @@ def run_sweep(path, out_dir, *, workers: int = 1, scheduler: str | None = None) 
     rows: dict[int, dict] = {}
     jobs = []
     for idx, case in enumerate(sw["cases"]):
-        done = _finished(out, idx)
+        done = _finished(out, idx, _case_inputs(sw["base"], _overrides(sw["fixed"], case)))
         if done is not None:
             rows[idx] = dict(case=idx, status="ok", error="", wall_s=done.get("performance", {}).get("wall_s"),
                              **summary_row(done))

@@ -71,6 +71,21 @@ def test_grid_parallel_equals_serial_failure_recorded_and_resume(tmp_path, capsy
     assert "(2 already done)" in capsys.readouterr().out
 
 
+def test_a_case_whose_values_changed_is_run_again_not_reused(tmp_path, capsys):
+    """Case folders are matched by their inputs, not by number alone: the same folder swept again
+    with another value for case 0 runs it (it used to report the old result under the new value);
+    swept again unchanged, it is reused."""
+    out = tmp_path / "s"
+    for rpm, done in ((3000.0, 0), (7000.0, 0), (7000.0, 1)):
+        f = _sweep_file(tmp_path, {"operating.speed_rpm": [rpm]})
+        capsys.readouterr()
+        assert main(["sweep", str(f), "--out", str(out), "--workers", "1"]) == 0
+        assert f"({done} already done)" in capsys.readouterr().out
+        row = _rows(out)[0]
+        assert float(row["operating.speed_rpm"]) == rpm
+        assert abs(float(row["final_rotor_rpm"]) - rpm) < 0.05 * rpm   # the result of that speed
+
+
 def test_bad_sweep_file(tmp_path, capsys):
     f = _sweep_file(tmp_path, {"operating.speed_rpm": []})
     assert main(["sweep", str(f), "--out", str(tmp_path / "o")]) == 2
