@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
+from .safeio import check_out_file
 
 SUFFIXES = (".gif", ".mp4", ".png")
 #: s: the recent part of the orbit trace, drawn thick and coloured by contact force
@@ -75,6 +76,7 @@ def _check(results_path, out_path, fps, view, max_frames, play_fps, size, at):
         raise InputError("--out", str(out_path), "must end in .gif, .mp4 or .png (one still frame)")
     if out_path.is_dir() or not out_path.parent.is_dir():
         raise InputError("--out", str(out_path), "must be a file in an existing folder")
+    check_out_file(out_path, "--out")
     if not isinstance(view, str) or not view:
         raise InputError("--view", view, "must be all, rotor or the name of a catcher bearing of the run (e.g. DE)")
     if not (isinstance(fps, (int, float)) and fps > 0 and math.isfinite(fps)):

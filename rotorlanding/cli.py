@@ -45,6 +45,21 @@ def _below_burst(rotor, speeds) -> None:
                          "made of the strongest steel", file=rotor.source)
 
 
+def _check_figure_path(path, option: str) -> None:
+    """A figure file matplotlib can write, in a folder that exists and is writable (checked before
+    the work: a bad name used to end a finished computation with a traceback)."""
+    from matplotlib.figure import Figure
+
+    from .safeio import check_out_file
+
+    kinds = Figure().canvas.get_supported_filetypes()
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in kinds:
+        raise InputError(option, str(path), "must end in an image type matplotlib writes: "
+                         + ", ".join("." + k for k in sorted(kinds)))
+    check_out_file(path, option)
+
+
 def _linear_model(path: str, model: str, free: bool, speeds=(), bearings_at_rpm=None):
     from .reduction import full_model, reduce_rotor
     from .rotor import load_rotor
@@ -76,6 +91,8 @@ def cmd_modes(args) -> int:
     speeds = _speeds(args.speeds_rpm)
     if args.n_modes < 1:
         raise InputError("--n-modes", args.n_modes, "must be >= 1")
+    if args.plot:
+        _check_figure_path(args.plot, "--plot")
     # a ROSS rotor's frequency-dependent bearings are taken at each spin speed, as ROSS's run_modal
     from .from_ross import has_speed_dependent_bearings
 
@@ -360,6 +377,9 @@ def cmd_diagnose(args) -> int:
 def cmd_calibrate(args) -> int:
     from .calibrate import calibrate
 
+    if args.workers < 1:
+        raise InputError("--workers", args.workers, "must be >= 1")
+    check_out_dir(args.out, "--out")  # before the designs are landed, not after
     rows = calibrate(args.space, args.out, workers=args.workers)
     failed = sum(1 for r in rows if r.get("failed_landings"))
     if failed == len(rows):
@@ -383,6 +403,7 @@ def cmd_calibrate(args) -> int:
 def cmd_fit_modes(args) -> int:
     from .modefit import fit_modes
 
+    check_out_dir(args.out, "--out")  # before the fit: a bad --out used to end it with a traceback
     fit_modes(args.space, args.out, stream=sys.stdout)
     print(f"written: {args.out}/modefit.json")
     return 0
@@ -535,6 +556,10 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
+        for opt in ("out", "publish", "plot"):
+            # '' is the current folder to Path: a run wrote there (clearing a results.h5 first)
+            if isinstance(getattr(args, opt, None), str) and not getattr(args, opt).strip():
+                raise InputError(f"--{opt}", "''", "must name a folder or file, not an empty string")
         return args.func(args)
     except InputError as err:
         print(f"rotorlanding: error: {err}", file=sys.stderr)

@@ -1439,6 +1439,9 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     paths = [measured_path] if isinstance(measured_path, (str, Path)) else list(measured_path)
     if not paths:
         raise InputError(opt("measured"), "none", "a measurement file, or several records of repeated landings")
+    if time_offset_s is not None and not math.isfinite(time_offset_s):
+        raise InputError(opt("time_offset_s"), time_offset_s, "must be a finite time in seconds (the drop instant "
+                         "in the data's clock), or left out to detect the drop")
     if len(paths) > 1 and time_offset_s is not None:
         raise InputError(opt("time_offset_s"), time_offset_s, f"only with one record ({len(paths)} given): the drop "
                          "of each of several records is detected in its own data")

@@ -266,7 +266,7 @@ def features_from_table(table: dict, clearance: float, *, where: str = "features
     the same rules as extracted features (:func:`scale_of`; force scales refer to the largest
     force given at the point)."""
     if not isinstance(table, dict) or not table:
-        raise InputError(where, table, "needs at least one measured feature, e.g. whirl_frequency_hz = 65.0", file=file)
+        raise InputError(where, table, "needs at least one measured feature, e.g. DE_vertical_min_m = -2.2e-4", file=file)
     forces = [abs(v) for k, v in table.items() if k.endswith("_n") and isinstance(v, (int, float))]
     out = {}
     for k, v in table.items():
@@ -287,11 +287,14 @@ def features_from_table(table: dict, clearance: float, *, where: str = "features
         if k.endswith("_m") and k != "axial_mean_m" and abs(v) > 0.05:
             raise InputError(f"{where}.{k}", v, "a journal displacement in metres is < 0.05 m (given in mm?)", file=file)
         out[k] = (float(v), scale_of(k, float(v), clearance, max(forces) if forces and k.endswith("_n") else None))
-    if "whirl_direction" in out and out["whirl_direction"][0] == "none":
+    if out.get("whirl_direction", ("none",))[0] == "none":
+        # without a direction the gap has nothing to compare the frequency with (it is the
+        # frequency of the model's whirl in the measured direction): the table ended in a diagnosis
+        # of no rows and a traceback at its figure
         for k in ("whirl_frequency_hz", "whirl_onset_s"):
             if k in out:
-                raise InputError(f"{where}.{k}", table[k], "a whirl frequency/onset needs whirl_direction forward or "
-                                 "backward", file=file)
+                raise InputError(f"{where}.{k}", table[k], "a whirl frequency/onset needs whirl_direction = "
+                                 "\"forward\" or \"backward\" in the same table", file=file)
     return out
 
 

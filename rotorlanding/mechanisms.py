@@ -507,7 +507,7 @@ REGISTRY += (
               doc="lumped thermal network of the catcher bearing, heated by the bearing's dissipation "
                   "(rotorlanding/thermal_states.py)",
               effect="catcher_thermal", default_on=True,
-              params=(Param("thermal_ambient_k", "K", 293.15, "ambient (and mounting) temperature", upper=600.0,
+              params=(Param("thermal_ambient_k", "K", 293.15, "ambient (and mounting) temperature", positive=True, upper=600.0,
                             why="bearing steel is tempered at 150-350 degC; a 600 K ambient already anneals it"),
                       Param("thermal_g_ball_set_w_k", "W/K", 0.5, "ball set to each ring (assumed, docs/designer_models.md)",
                             upper=1.0e5, why=_SOLID_SHELL),

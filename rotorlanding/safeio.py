@@ -153,6 +153,9 @@ def check_out_dir(out, option: str = "--out") -> Path:
     exit 2); a full disk found by the probe is a WriteError. Creates the folder."""
     from .errors import InputError
 
+    if not str(out).strip():
+        # '' is the current folder to Path: a run would write (and first clear a results.h5) there
+        raise InputError(option, repr(str(out)), "must name a folder (results go into a folder)")
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InputError(option, str(out), "exists and is not a folder (results go into a folder)")
@@ -174,6 +177,36 @@ def check_out_dir(out, option: str = "--out") -> Path:
         raise WriteError(out, exc) from None
     _unlink(probe)
     return out
+
+
+def check_out_file(path, option: str = "--out") -> Path:
+    """Validate an output file before any work is done: a name in an existing folder that can be
+    written to, not a folder itself (InputError, exit 2); a full disk found by the probe is a
+    WriteError. Creates nothing."""
+    from .errors import InputError
+
+    if not str(path).strip():
+        raise InputError(option, repr(str(path)), "must name a file")
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(option, str(path), "is a folder; give a file name")
+    folder = path.parent
+    if not folder.is_dir():
+        raise InputError(option, str(path), f"its folder {folder} does not exist")
+    probe = folder / f".rotorlanding-probe-{os.getpid()}"
+    try:
+        fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        try:
+            os.write(fd, b"x")
+        finally:
+            os.close(fd)
+    except OSError as exc:
+        _unlink(probe)
+        if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOTDIR, errno.EISDIR, errno.ENOENT):
+            raise InputError(option, str(path), f"its folder {folder} is not writable: {exc.strerror}") from None
+        raise WriteError(folder, exc) from None
+    _unlink(probe)
+    return path
 
 
 def fsync_path(path) -> None:

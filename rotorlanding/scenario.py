@@ -293,6 +293,11 @@ def _bearing(name: str, t: Table, rotor: Rotor) -> Bearing:
     )
     from .rotor import MAX_DIMENSION
 
+    amb, limit = b.extra.get("thermal_ambient_k"), b.extra.get("thermal_runaway_limit_k")
+    if amb is not None and limit is not None and not limit > amb:
+        # a limit the bearing starts above would report runaway at the first step
+        raise InputError(f"{t.path}.thermal_runaway_limit_k", limit, f"must be above the ambient thermal_ambient_k "
+                         f"= {amb:g} K")
     for key in ("sleeve_radius", "pitch_diameter", "face_inner_radius", "face_outer_radius"):
         if getattr(b, key) > MAX_DIMENSION:  # plausibility (see _plausible); first, as the face check uses them
             raise InputError(f"{t.path}.{key}", getattr(b, key), f"must be <= {MAX_DIMENSION:g} m (the largest rotors "

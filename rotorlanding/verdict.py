@@ -404,24 +404,21 @@ def verdict_from_results(results_h5, out_dir=None, *, overrides=None, plots=True
     """Verdict of a finished run from its results.h5 (the stored scenario, its [limits], ``overrides``
     such as limits.temperature_degc=100); writes verdict.json and verdict.md (and temperatures.png)
     into ``out_dir`` (default: the results' folder)."""
-    import h5py
-
     from .landing import build_spec
     from .mechanisms import thermal_active
     from .readers import read_results_guarded
     from .scenario import apply_overrides, scenario_from_dict
 
     path = Path(results_h5)
-    data = read_results_guarded(path, ("scenario",), field="results")["scenario"]
+    # every part through the guarded reader: a file without time_s or series was a KeyError traceback
+    stored = read_results_guarded(path, ("scenario", "time_s", "series", "summary"), field="results")
+    data = stored["scenario"]
     data.pop("coastdown", None)
     data = apply_overrides(data, overrides)
     limits = limits_from_dict(data.get("limits"))
     scenario = scenario_from_dict(data, source=str(path))
     spec = build_spec(scenario)
-    with h5py.File(path, "r") as h5:
-        t = h5["time_s"][()]
-        s = {k: h5["series"][k][()] for k in h5["series"]}
-        summary = json.loads(h5["summary_json"][()])
+    t, s, summary = np.asarray(stored["time_s"]), stored["series"], stored["summary"]
     v = evaluate(spec, t, s, summary, limits)
     out = Path(out_dir) if out_dir is not None else path.parent
     atomic_write_text(out / "verdict.json", json.dumps(v, indent=2, default=_json_default))

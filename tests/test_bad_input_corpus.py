@@ -69,6 +69,8 @@ SCENARIO_KEYS = [k for k in _numeric_keys(load_toml(PAPER)) if not k.startswith(
 #: then named impossible values from issue 16 and a few schema breakers
 RUN_SET_CASES = [([f"{k}={v}"], _field_pattern(k)) for k in SCENARIO_KEYS for v in ("1e300", "-1e300")]
 RUN_SET_CASES += [
+    (["bearings.DE.thermal_ambient_k=0"], ["bearings.DE.thermal_ambient_k"]),   # 0 K: the DE summary vanished
+    (["bearings.DE.thermal_runaway_limit_k=100"], ["bearings.DE.thermal_runaway_limit_k"]),  # below the ambient
     (["bearings.DE.clearance=1e-2"], ["bearings.DE.clearance"]),          # 34 % of the sleeve radius
     (["amb.stiffness=1e300"], ["amb.stiffness"]),
     (["contact.mu_ax=50"], ["contact.mu_ax"]),
@@ -152,6 +154,9 @@ ROTOR_ARG_CASES = [
     (["modes", "--speeds-rpm", "0,1e12"], "--speeds-rpm"),        # beyond the rotor's burst speed
     (["reduce", "--speeds-rpm", "1e300"], "--speeds-rpm"),
     (["reduce", "--speeds-rpm", "1,x"], "--speeds-rpm"),
+    (["modes", "--plot", "no_such_folder/c.png"], "--plot"),          # checked before the modes are computed
+    (["modes", "--plot", "campbell.txt"], "--plot"),                  # a type matplotlib cannot write
+    (["modes", "--plot", ""], "--plot"),
 ]
 
 COAST_CASES = [
@@ -255,6 +260,7 @@ FEATURE_CASES = [
      "points.a.features.whirl_frequency_hz"),
     ("point_impossible_set", "[points.a.set]\ncontact.mu_ax = 50.0\n[points.a.features]\nwhirl_frequency_hz = 48.0\n",
      "points.a.set"),
+    ("frequency_without_direction", "[features]\nwhirl_frequency_hz = 48.0\n", "whirl_frequency_hz"),
     ("empty_toml", "", "(file)"),
     ("utf16_toml", "[features]\nwhirl_frequency_hz = 48.0\n".encode("utf-16"), "(file)"),
 ]
@@ -266,6 +272,8 @@ JSON_CASES = [
 ]
 
 DIAGNOSE_ARG_CASES = [
+    (["--time-offset-s", "nan"], "--time-offset-s"),
+    (["--time-offset-s", "inf"], "--time-offset-s"),
     (["--workers", "0"], "--workers"),
     (["--maxiter", "0"], "--maxiter"),
     (["--candidates", "no_such_effect"], "--candidates"),
@@ -341,10 +349,10 @@ H5_CASES = {
     "no_scenario": {"run": "scenario_json", "animate": "scenario_json"},
     "scenario_not_json": {"run": "scenario_json", "animate": "scenario_json"},
     "impossible_scenario": {"run": "contact.mu_ax", "animate": "contact.mu_ax"},
-    "no_time": {"animate": "time_s", "diagnose": "time_s"},
+    "no_time": {"animate": "time_s", "diagnose": "time_s", "verdict": "time_s"},
     "no_states": {"animate": "states/q"},
     "q_wrong_rows": {"animate": "states/q"},
-    "no_series": {"diagnose": "series"},
+    "no_series": {"diagnose": "series", "verdict": "series"},
     "clock_restarts": {"diagnose": "time_s"},
     "speed_1e300": {"diagnose": "rotor_speed_rpm"},
 }
@@ -641,6 +649,8 @@ def _h5_argv(cmd: str, f: Path, out: Path) -> list[str]:
         return ["run", str(f), "--out", str(out / "r"), "--no-plots", "--quiet"]
     if cmd == "animate":
         return ["animate", str(f), "--out", str(out / "a.gif")]
+    if cmd == "verdict":
+        return ["verdict", str(f), "--out", str(out / "v"), "--no-plots"]
     return ["diagnose", "--measured", str(f), "--scenario", str(PAPER), "--out", str(out / "d")]
 
 
@@ -768,6 +778,22 @@ def test_every_shipped_input_still_loads():
                     continue  # the paper scenarios have no [unbalance] table
                 for v in (p.lower, p.upper):
                     load_scenario(ROOT / "scenarios" / "paper" / f, [f"{k}={v!r}" for k in p.keys])
+
+
+@pytest.mark.parametrize("argv,field", [
+    (["calibrate", "scenarios/calibration/worn_bearing.toml", "--out", "{file}"], "--out"),
+    (["calibrate", "scenarios/calibration/worn_bearing.toml", "--workers", "0", "--out", "{tmp}/c"], "--workers"),
+    (["fit-modes", "scenarios/calibration/rotor_modes.toml", "--out", "{file}"], "--out"),
+    (["run", "scenarios/landing_7000rpm.toml", "--out", ""], "--out"),
+    (["sweep", "scenarios/sweeps/forward_whirl_speed_mu.toml", "--out", ""], "--out"),
+], ids=["calibrate-out-file", "calibrate-workers-0", "fit-modes-out-file", "run-out-empty", "sweep-out-empty"])
+def test_output_checked_before_the_work(argv, field, tmp_path, capsys, monkeypatch):
+    """An --out that is a file or an empty string (the current folder to Path: a run wrote there,
+    clearing a results.h5 first) is refused before any design is landed or any mode fitted."""
+    monkeypatch.chdir(ROOT)
+    f = tmp_path / "a_file"
+    f.write_text("x")
+    _cli([a.replace("{file}", str(f)).replace("{tmp}", str(tmp_path)) for a in argv], capsys, field)
 
 
 def test_corpus_size():
