@@ -258,12 +258,13 @@ def cmd_verdict(args) -> int:
 
 
 def cmd_validate(args) -> int:
-    from .validate import counts_line, check_line, validate
+    from .validate import check_cases, check_line, counts_line, validate
 
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
     if args.rig is not None and not Path(args.rig).is_file():
         raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
+    check_cases(args.sets or (), args.rig)
     if args.publish is not None and not Path(args.publish).is_dir():
         raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
     # both folders checked before 190 landings are run into them: a bad one is one line, now

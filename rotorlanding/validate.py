@@ -1014,6 +1014,16 @@ def representative_drop(ens: dict) -> int:
     return min(same, key=lambda k: abs(ens["members"][k]["v_disp_range_m"][1] - ref))
 
 
+def check_cases(sets=(), rig=None) -> None:
+    """Load every case's scenario with ``sets`` (and the ``rig`` overlay): a bad --set value is one
+    line naming the file, found before any landing (it was a traceback from each worker and an
+    empty report folder)."""
+    from .scenario import load_scenario
+
+    for f, cs in CASES.values():
+        load_scenario(paper_dir() / f, list(cs) + list(sets), overlays=[str(Path(rig).resolve())] if rig else ())
+
+
 def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, rig=None, sets=()) -> dict:
     """Run the paper landings into ``out_dir``; ``rig``: a rotor (or rig) file merged on top of every
     paper scenario; ``sets``: ``--set`` overrides applied to every landing after the case's own (e.g.
@@ -1028,6 +1038,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     t_end = QUICK_T_END if quick else None
     rig = str(Path(rig).resolve()) if rig else None
     extra = list(sets)
+    check_cases(extra, rig)
     jobs = [(k, f, list(cs) + extra, str(out), t_end, rig, True, True) for k, (f, cs) in CASES.items()]
     jobs += [(k, f, list(cs) + extra, *rest) for k, f, cs, *rest in _ensemble_jobs(out, t_end, rig)]
     wall0 = time.perf_counter()

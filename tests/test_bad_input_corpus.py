@@ -334,7 +334,9 @@ FIT_CASES = [
     ("utf16", (_FIT_HEAD + _FIT_TARGETS + _FIT_RANGES).encode("utf-16"), "(file)"),
 ]
 
-VALIDATE_CASES = [(["--workers", "0"], "--workers"), (["--rig", "no_such_rig.toml"], "--rig")]
+VALIDATE_CASES = [(["--workers", "0"], "--workers"), (["--rig", "no_such_rig.toml"], "--rig"),
+                  (["--set", "contact.mu_rad=-1"], "contact.mu_rad"), (["--set", "foo.bar=1"], "foo"),
+                  (["--quick", "--set", "operating.t_end=-1"], "operating.t_end")]
 ANIMATE_ARG_CASES = [(["--view", "top"], "--view"), (["--fps", "0"], "--fps"), (["--max-frames", "1"], "--max-frames")]
 
 #: damaged results.h5 for run / animate / diagnose: name -> {command: field in the message}. A
