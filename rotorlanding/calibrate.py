@@ -68,6 +68,10 @@ def load_space(path) -> dict:
         n = t.integer("samples", 20)
         seed = t.integer("seed", 1, minimum=0)
         t_end = t.number("t_end", 0.8, positive=True)
+        from .scenario import MAX_T_END
+
+        if t_end > MAX_T_END:  # checked here: every design's landing failed on it, exit 1
+            raise InputError("t_end", t_end, f"must be <= {MAX_T_END:g} s (as a scenario's operating.t_end)")
         verify_top = t.integer("verify_top", 0, minimum=0)
         cases = t.raw("cases", list(DEFAULT_CASES))
         if not (isinstance(cases, list) and cases and all(c in CASES for c in cases)):
@@ -83,7 +87,10 @@ def load_space(path) -> dict:
         for k, r in ranges.items():
             range_spec(r, f"ranges.{k}", log=True)
         # discrete choices made outside the search (read by validate's provenance labels)
-        for what, c in t.raw("choices", {}).items():
+        choices = t.raw("choices", {})
+        if not isinstance(choices, dict):
+            raise InputError("choices", choices, "a table of tables {options, chosen, judged_on = [case, ...], record}")
+        for what, c in choices.items():
             if not (isinstance(c, dict) and set(c) == {"options", "chosen", "judged_on", "record"}
                     and isinstance(c["judged_on"], list) and all(j in CASES for j in c["judged_on"])):
                 raise InputError(f"choices.{what}", c, "a table {options, chosen, judged_on = [case, ...], record}")

@@ -88,6 +88,9 @@ def load_space(path) -> dict:
             range_spec(r, f"ranges.{k}")
         t.finish()
     rotor_data = load_toml(rotor_file)
+    if not isinstance(rotor_data.get("rotor"), dict):
+        raise InputError("rotor", str(rotor_file), "must name a rotor file or a scenario with a [rotor] table",
+                         file=str(path))
     for k in ranges:
         try:
             set_dotted(copy.deepcopy(rotor_data), k, 1.0, must_exist=True)

@@ -64,7 +64,7 @@ def load_map(path) -> dict:
             value_list(vals, f"axes.{k}")
         t.finish()
         keys = list(axes)
-        _check(base, fixed, keys, axes, drops)
+        _check(base, fixed, keys, axes, drops, radius)
     return {"base": base, "drops": drops, "drop_radius_m": radius, "fixed": fixed, "keys": keys,
             "values": [list(axes[k]) for k in keys]}
 
@@ -73,7 +73,7 @@ def _sets(fixed: dict, cell: dict, offset: list[str]) -> list[str]:
     return [f"{k}={json.dumps(v)}" for k, v in {**fixed, **cell}.items()] + offset
 
 
-def _check(base: Path, fixed: dict, keys: list[str], axes: dict, drops: int) -> None:
+def _check(base: Path, fixed: dict, keys: list[str], axes: dict, drops: int, radius: float = DROP_RADIUS_M) -> None:
     """The fixed overrides, every axis value (alone on top of them) and the first cell are valid
     scenario input: bad input is one line naming the field before any drop runs."""
     from .scenario import load_scenario
@@ -95,6 +95,11 @@ def _check(base: Path, fixed: dict, keys: list[str], axes: dict, drops: int) -> 
         load_scenario(base, _sets(fixed, first, []))
     except InputError as err:
         raise InputError("axes", first, f"the first cell is invalid for the scenario: {err}") from None
+    try:
+        # the first cell's drop from the circle: a radius beyond the clearance failed every drop
+        load_scenario(base, _sets(fixed, first, drop_offsets(1, radius)[0]))
+    except InputError as err:
+        raise InputError("drop_radius_m", radius, f"the drops start outside the first cell's clearance: {err}") from None
 
 
 def run_drop(job) -> dict:

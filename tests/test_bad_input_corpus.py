@@ -303,6 +303,8 @@ SWEEP_CASES = [
 ]
 
 CAL_CASES = [
+    ("choices_number", 'choices = 5\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.3}\n', "choices"),
+    ("t_end_beyond_a_day", 't_end = 1e9\n[ranges]\n"contact.mu_rad" = {min = 0.1, max = 0.3}\n', "t_end"),
     ("fixed_number", "fixed = 5\n", "fixed"),
     ("ranges_text", '[ranges]\n"contact.mu_rad" = {min = "a", max = 0.3}\n', "ranges.contact.mu_rad.min"),
     ("ranges_log_negative", '[ranges]\n"contact.mu_rad" = {min = -0.1, max = 0.3, log = true}\n', "ranges.contact.mu_rad.min"),
@@ -319,6 +321,8 @@ _FIT_HEAD = 'rotor = "{rotor}"\nsupport_stiffness = 3.6e7\n'
 _FIT_TARGETS = '[targets]\nspeeds_rpm = [3000.0, 7000.0]\nfrequencies_hz = [48.0, 65.0]\n'
 _FIT_RANGES = '[ranges]\n"rotor.sections.3.outer_diameter" = {min = 0.035, max = 0.07}\n'
 FIT_CASES = [
+    ("rotor_without_rotor_table", _FIT_HEAD.replace("{rotor}", str(ROOT / "scenarios" / "paper" / "reference.toml"))
+     + _FIT_TARGETS + '[ranges]\n"table1.simulated.onset_s" = {min = 0.035, max = 0.07}\n', "rotor"),
     ("ranges_text", _FIT_HEAD + _FIT_TARGETS + '[ranges]\n"rotor.sections.3.outer_diameter" = {min = "x", max = 0.07}\n',
      "ranges.rotor.sections.3.outer_diameter.min"),
     ("ranges_unknown_key", _FIT_HEAD + _FIT_TARGETS + '[ranges]\n"rotor.nosuch" = {min = 0.1, max = 0.2}\n', "ranges.rotor.nosuch"),
@@ -796,6 +800,13 @@ def test_output_checked_before_the_work(argv, field, tmp_path, capsys, monkeypat
     f = tmp_path / "a_file"
     f.write_text("x")
     _cli([a.replace("{file}", str(f)).replace("{tmp}", str(tmp_path)) for a in argv], capsys, field)
+
+
+def test_whirl_map_drop_circle_beyond_the_clearance(tmp_path, capsys):
+    """A drop circle wider than the clearance failed every drop (exit 1, no reason); now one line."""
+    body = (f'scenario = "{PAPER}"\ndrops = 2\ndrop_radius_m = 1.0\n[fixed]\n"operating.t_end" = 0.01\n[axes]\n'
+            '"operating.speed_rpm" = [3000.0]\n"contact.mu_rad" = [0.1]\n')
+    _cli(["whirl-map", _write(tmp_path / "m.toml", body), "--out", tmp_path / "o"], capsys, "drop_radius_m")
 
 
 def test_corpus_size():
