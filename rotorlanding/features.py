@@ -286,7 +286,22 @@ def features_from_table(table: dict, clearance: float, *, where: str = "features
             raise InputError(f"{where}.{k}", v, f"must be >= 0: {NONNEGATIVE_FEATURES[k]}", file=file)
         if k.endswith("_m") and k != "axial_mean_m" and abs(v) > 0.05:
             raise InputError(f"{where}.{k}", v, "a journal displacement in metres is < 0.05 m (given in mm?)", file=file)
+        if k == "axial_mean_m" and abs(v) > 0.05:
+            raise InputError(f"{where}.{k}", v, "an axial displacement of a landing in metres is < 0.05 m (the axial "
+                             "clearance is a fraction of a millimetre; given in mm?)", file=file)
+        if k.endswith("_n") and abs(v) > 1.0e7:
+            raise InputError(f"{where}.{k}", v, "must be <= 1e7 N in magnitude: 1000 t is beyond the static load rating "
+                             "of any rolling bearing (given in mN?)", file=file)
+        if k == "rotor_deceleration_rpm_s" and abs(v) > 1.0e6:
+            raise InputError(f"{where}.{k}", v, "must be <= 1e6 rpm/s in magnitude: a 100 000 rpm rotor stopped in "
+                             "0.1 s", file=file)
         out[k] = (float(v), scale_of(k, float(v), clearance, max(forces) if forces and k.endswith("_n") else None))
+    for low, high in (("vertical_min_m", "vertical_max_m"), ("horizontal_min_m", "horizontal_max_m"),
+                      ("force_z_min_n", "force_z_max_n")):
+        for b in JOURNALS:
+            lo, hi = f"{b}_{low}", f"{b}_{high}"
+            if lo in out and hi in out and out[lo][0] > out[hi][0]:
+                raise InputError(f"{where}.{lo}", table[lo], f"must not exceed {hi} = {table[hi]!r}", file=file)
     if out.get("whirl_direction", ("none",))[0] == "none":
         # without a direction the gap has nothing to compare the frequency with (it is the
         # frequency of the model's whirl in the measured direction): the table ended in a diagnosis

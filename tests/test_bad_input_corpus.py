@@ -261,6 +261,10 @@ FEATURE_CASES = [
     ("point_impossible_set", "[points.a.set]\ncontact.mu_ax = 50.0\n[points.a.features]\nwhirl_frequency_hz = 48.0\n",
      "points.a.set"),
     ("frequency_without_direction", "[features]\nwhirl_frequency_hz = 48.0\n", "whirl_frequency_hz"),
+    ("axial_mean_metres", "[features]\naxial_mean_m = 5.0\n", "axial_mean_m"),
+    ("force_1e12", "[features]\nDE_force_peak_n = 1e12\n", "DE_force_peak_n"),
+    ("deceleration_1e9", "[features]\nrotor_deceleration_rpm_s = -1e9\n", "rotor_deceleration_rpm_s"),
+    ("min_above_max", "[features]\nDE_vertical_min_m = 2e-4\nDE_vertical_max_m = -2e-4\n", "DE_vertical_min_m"),
     ("empty_toml", "", "(file)"),
     ("utf16_toml", "[features]\nwhirl_frequency_hz = 48.0\n".encode("utf-16"), "(file)"),
 ]
