@@ -232,7 +232,8 @@ def _bounds(data: dict) -> dict[str, Bound]:
             # rig files resolves in the paper scenarios, so a misspelt key does not go unseen
             continue
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise InputError(field_, key, f"names a non-numeric parameter ({value!r})")
+            # the value is what is wrong (a text where a number belongs), not its bound
+            raise InputError(key, value, f"must be a finite number (its [bounds] entry: {lo:g} .. {hi:g})")
         out[key] = Bound(float(lo), float(hi), src.strip(), log)
     return out
 

@@ -70,6 +70,7 @@ SCENARIO_KEYS = [k for k in _numeric_keys(load_toml(PAPER)) if not k.startswith(
 RUN_SET_CASES = [([f"{k}={v}"], _field_pattern(k)) for k in SCENARIO_KEYS for v in ("1e300", "-1e300")]
 RUN_SET_CASES += [
     (["bearings.DE.thermal_ambient_k=0"], ["bearings.DE.thermal_ambient_k"]),   # 0 K: the DE summary vanished
+    (["bearings.DE.clearance=abc"], ["bearings.DE.clearance = 'abc'"]),   # the value named, not its [bounds] entry
     (["bearings.DE.thermal_runaway_limit_k=100"], ["bearings.DE.thermal_runaway_limit_k"]),  # below the ambient
     (["bearings.DE.clearance=1e-2"], ["bearings.DE.clearance"]),          # 34 % of the sleeve radius
     (["amb.stiffness=1e300"], ["amb.stiffness"]),
