@@ -253,6 +253,10 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     cd_json = json.dumps(asdict(cd))
 
     existing = path.is_file()
+    if resume and not existing:
+        # said, not silent: a user who meant another folder would otherwise wait for a whole new run
+        print(f"rotorlanding: note: --resume: {out} holds no coast-down to continue; starting a new one",
+              file=sys.stderr)
     if existing and resume:
         check_resumable(path, scenario, cd_json)
     elif existing and not overwrite:

@@ -188,18 +188,27 @@ def _is_scalar(v) -> bool:
     return isinstance(v, (bool, str)) or (isinstance(v, (int, float)) and math.isfinite(v))
 
 
+def _plain_key(key: str, field: str) -> None:
+    """A quoted scenario key with spaces around it ("operating.speed_rpm ") named the same value as
+    the plain one: a whirl map with both as its axes labelled cells it had run at another speed."""
+    if not key.strip() or key != key.strip():
+        raise InputError(field, repr(key), 'a scenario key without spaces around it, e.g. "operating.speed_rpm"')
+
+
 def override_table(value, field: str) -> dict:
     """A table of ``"dotted.key" = value`` overrides (``[fixed]``): scalar values only."""
     if not isinstance(value, dict):
         raise InputError(field, value, 'must be a table of scenario keys = values, e.g. [fixed] "operating.t_end" = 0.5')
     for k, v in value.items():
+        _plain_key(k, f"{field}.{k}")
         if not _is_scalar(v):
             raise InputError(f"{field}.{k}", v, "must be a number (finite), true/false or a string")
     return dict(value)
 
 
 def value_list(value, field: str) -> list:
-    """A non-empty list of scalar values (a ``[grid]`` entry)."""
+    """A non-empty list of scalar values (a ``[grid]`` entry; ``field`` = table.key)."""
+    _plain_key(field.split(".", 1)[-1], field)
     if not isinstance(value, list) or not value:
         raise InputError(field, value, "must be a non-empty list of values")
     for v in value:
@@ -211,6 +220,7 @@ def value_list(value, field: str) -> list:
 def range_spec(value, field: str, *, log: bool = False) -> tuple[float, float, bool]:
     """``{min = a, max = b}`` (with ``log`` allowed: ``{..., log = true}``, then a > 0) ->
     (a, b, log)."""
+    _plain_key(field.split(".", 1)[-1], field)
     keys = {"min", "max", "log"} if log else {"min", "max"}
     form = "{min = a, max = b" + (", log = true" if log else "") + "}"
     if not (isinstance(value, dict) and {"min", "max"} <= set(value) <= keys):

@@ -297,6 +297,7 @@ SWEEP_CASES = [
     ("grid_tables", '[grid]\n"contact.mu_ax" = [{a = 1}]\n', "grid.contact.mu_ax"),
     ("grid_all_impossible", '[grid]\n"contact.mu_ax" = [50.0, 60.0]\n', "contact.mu_ax"),
     ("grid_unknown_key", '[grid]\n"contact.nosuch" = [1.0]\n', "contact.nosuch"),
+    ("grid_key_with_space", '[grid]\n"contact.mu_ax " = [0.1]\n', "grid.contact.mu_ax"),
     ("mode_bad", 'mode = "random"\n[grid]\n"contact.mu_ax" = [0.1]\n', "mode"),
     ("ranges_text", 'mode = "monte_carlo"\n[ranges]\n"contact.mu_ax" = {min = "a", max = 0.3}\n', "ranges.contact.mu_ax.min"),
     ("ranges_inverted", 'mode = "monte_carlo"\n[ranges]\n"contact.mu_ax" = {min = 0.3, max = 0.1}\n', "ranges.contact.mu_ax"),
