@@ -231,6 +231,8 @@ def _bounds(data: dict) -> dict[str, Bound]:
             # disks): it bounds nothing here; tests/test_rig_bounds.py checks every bound of the
             # rig files resolves in the paper scenarios, so a misspelt key does not go unseen
             continue
+        if isinstance(value, (dict, list)):
+            raise InputError(field_, key, "names a table or list, not a numeric parameter")
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             # the value is what is wrong (a text where a number belongs), not its bound
             raise InputError(key, value, f"must be a finite number (its [bounds] entry: {lo:g} .. {hi:g})")

@@ -134,7 +134,7 @@ def test_repeated_records_name_a_weak_effect(rig_without_windage, tmp_path):
 def test_repeated_records_bad_input_one_line(rig_without_windage, tmp_path, capsys):
     paths = _records(rig_without_windage, [], tmp_path, 2, 3)
     table = tmp_path / "table.toml"
-    table.write_text("[features]\nwhirl_frequency_hz = 65.0\n")
+    table.write_text("[features]\nwhirl_direction = \"forward\"\nwhirl_frequency_hz = 65.0\n")
     with pytest.raises(InputError) as err:
         records_for_diagnosis(rig_without_windage, [paths[0], table], [])
     assert "table.toml" in str(err.value) and "repeated landings must be records" in str(err.value)
