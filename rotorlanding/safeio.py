@@ -163,19 +163,7 @@ def check_out_dir(out, option: str = "--out") -> Path:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise InputError(option, str(out), f"cannot be created: {exc.strerror or exc}") from None
-    probe = out / f".rotorlanding-probe-{os.getpid()}"
-    try:
-        fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
-        try:
-            os.write(fd, b"x")
-        finally:
-            os.close(fd)
-    except OSError as exc:
-        _unlink(probe)
-        if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOTDIR, errno.EISDIR):
-            raise InputError(option, str(out), f"is not writable: {exc.strerror}") from None
-        raise WriteError(out, exc) from None
-    _unlink(probe)
+    _probe_writable(out, option, str(out), "is not writable")
     return out
 
 
@@ -193,6 +181,15 @@ def check_out_file(path, option: str = "--out") -> Path:
     folder = path.parent
     if not folder.is_dir():
         raise InputError(option, str(path), f"its folder {folder} does not exist")
+    _probe_writable(folder, option, str(path), f"its folder {folder} is not writable")
+    return path
+
+
+def _probe_writable(folder: Path, option: str, shown: str, what: str) -> None:
+    """Write and remove one byte in ``folder``: a folder the user cannot write to is bad input
+    (InputError naming ``option`` = ``shown``, "``what``: reason"); a full disk is a WriteError."""
+    from .errors import InputError
+
     probe = folder / f".rotorlanding-probe-{os.getpid()}"
     try:
         fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
@@ -203,10 +200,9 @@ def check_out_file(path, option: str = "--out") -> Path:
     except OSError as exc:
         _unlink(probe)
         if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOTDIR, errno.EISDIR, errno.ENOENT):
-            raise InputError(option, str(path), f"its folder {folder} is not writable: {exc.strerror}") from None
+            raise InputError(option, shown, f"{what}: {exc.strerror}") from None
         raise WriteError(folder, exc) from None
     _unlink(probe)
-    return path
 
 
 def fsync_path(path) -> None:
