@@ -78,12 +78,13 @@ def test_example_full(script, tmp_path):
     _run(script, tmp_path)
 
 
-def test_importing_build_rotor_and_land_runs_nothing(tmp_path, capsys, monkeypatch):
+@pytest.mark.parametrize("name", ["build_rotor_and_land", "coastdown"])
+def test_importing_an_example_runs_nothing(name, tmp_path, capsys, monkeypatch):
     """A user can import the example and call ``main(argv)``: importing builds, prints and writes
     nothing (the script's work sits in ``main``)."""
     import importlib
 
     monkeypatch.syspath_prepend(str(EXAMPLES))
     monkeypatch.chdir(tmp_path)
-    mod = importlib.import_module("build_rotor_and_land")
+    mod = importlib.import_module(name)
     assert callable(mod.main) and capsys.readouterr().out == "" and not any(tmp_path.iterdir())
