@@ -177,11 +177,17 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
             "noise_gate": round(res["noise_gate"], 3), "right": judge(case, res), "time_s": round(wall, 1),
             "simulations": res["simulations"], "fs_hz": sen["fs_hz"],
             "channels_missing": ",".join(sorted(set(__import__("sensor_model").CHANNELS) - set(sen["channels"]))) or "-",
-            "fitted": json.dumps(res["fitted"], default=float)}
+            "fitted": json.dumps(res["fitted"], default=float),
+            # what diagnose said before calibrating (issue 20, point 8): the candidates the channels
+            # cannot see even at full strength, and the pairs they cannot tell apart
+            "unseen": ",".join(c["name"] for c in res["identifiability"]["candidates"] if c.get("detectable") is False)
+            or "-",
+            "alike": ";".join(f"{q['a']}/{q['b']}" for q in res["identifiability"]["pairs"] if not q["told_apart"])
+            or "-"}
 
 
 FIELDS = ["case", "kind", "truth", "truth_sets", "named", "explanation", "gap_before", "gap_after", "noise_gate",
-          "right", "time_s", "simulations", "fs_hz", "channels_missing", "fitted"]
+          "right", "time_s", "simulations", "fs_hz", "channels_missing", "fitted", "unseen", "alike"]
 
 
 def rates(rows: list[dict]) -> dict:

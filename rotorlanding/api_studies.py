@@ -450,6 +450,11 @@ class Diagnosis:
         points: per operating point: name, overrides, whirl measured / before / after
         features_before, features_after: the feature rows (``feature``, ``measured``,
             ``simulated``, ``scale``, ``distance``, ``point``; SI units as the feature names say)
+        identifiability: what the channels given can tell apart, said before calibrating:
+            ``candidates`` (each with the gap it opens, ``change``, whether the noise gate lets it
+            be seen, and the feature rows that carry it), ``pairs`` (correlation of two seen
+            candidates' signatures, the remainder the other leaves, ``told_apart``) and
+            ``warnings`` (rotorlanding/identifiability.py)
         out_dir, report_md, figure: the folder, report.md and the figure written by the run
     """
 
@@ -478,6 +483,8 @@ class Diagnosis:
     points = property(lambda self: self.report["points"])
     features_before = property(lambda self: self.report["features_before"])
     features_after = property(lambda self: self.report["features_after"])
+    # a report written before session 24 has none
+    identifiability = property(lambda self: self.report.get("identifiability"))
 
     @property
     def calibrated(self) -> dict:

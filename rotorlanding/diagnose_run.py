@@ -185,6 +185,10 @@ class _Simulator:
         # the number of measured records whose mean features are compared (:class:`Repeated`); the
         # noise gate's members are means of as many drops
         self.records = records
+        # noise-free variants already landed (overrides -> features per point): the solver is
+        # deterministic, so a variant asked for twice (the identifiability probes, then the same
+        # values on a calibration's grid or a parameter's screening) is landed once
+        self.memo: dict = {}
 
     def overrides(self, p: Point, extra: list[str]) -> list[str]:
         return self.base + list(p.overrides) + list(extra)
@@ -192,10 +196,23 @@ class _Simulator:
     def features(self, extras: list[list[str]], noise=None, single: bool = False) -> list[list[dict]]:
         """Simulated features at every point for each model variant (all submitted at once);
         ``noise``: sensor noise added to the series (variant i seeded with i); ``single``: one drop
-        per variant even in ensemble mode (the noise gate's members)."""
+        per variant even in ensemble mode (the noise gate's members). Noise-free variants landed
+        before in this diagnosis come from :attr:`memo`."""
+        if noise:
+            return self._land(extras, noise, single)
+        keys = [(tuple(e), single) for e in extras]
+        todo = list(dict.fromkeys(k for k in keys if k not in self.memo))
+        if todo:
+            for k, sims in zip(todo, self._land([list(k[0]) for k in todo], None, single)):
+                self.memo[k] = sims
+        return [list(self.memo[k]) for k in keys]
+
+    def _land(self, extras: list[list[str]], noise, single: bool) -> list[list[dict]]:
         from .ensemble import drop_offsets
         from .features import ensemble_features
 
+        if not extras:
+            return []
         members = [[]] if single or self.ensemble <= 1 else \
             drop_offsets(self.ensemble, *([self.radius] if self.radius else []))
         jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, noise, i)
@@ -429,25 +446,13 @@ def _calibrate(sim: _Simulator, name: str, terms: list[Term], maxiter: int) -> d
     """Switch one effect on (with everything named so far) and fit its parameters on the gap over
     all points (one after the other, each bounded). An effect the scenario cannot take (e.g.
     unbalance without an [unbalance] table) comes back with gap = inf and the reason."""
-    from .scenario import load_scenario
-
     eff = CATALOGUE[name]
     current = _terms_overrides(terms)
     on = current + [f"effects.{name}=true"]
-    # an effect whose only missing input is the parameter the fit is about to supply (the worn
-    # drag torque) is applicable: probe again with it; report the first reason if both fail
-    probes = [on] + ([on + _param_overrides(eff.parameters[0], eff.parameters[0].lower)] if eff.parameters else [])
-    first_error = None
-    for probe in probes:
-        try:
-            for p in sim.points:
-                load_scenario(sim.scenario_path, sim.overrides(p, probe))
-            break
-        except InputError as err:
-            first_error = first_error or err
-    else:
+    reason = _not_applicable(sim, on, eff)
+    if reason:
         return {"effect": name, "kind": "effect", "gap": float("inf"), "parameters": {}, "rows": [], "k": 0,
-                "not_applicable": str(first_error)}
+                "not_applicable": reason}
     if not eff.parameters:
         g, rows, sims, err = sim.gap(on)
         return {"effect": name, "kind": "effect", "gap": g, "parameters": {}, "rows": rows, "k": 0, "sims": sims,
@@ -548,6 +553,73 @@ def _parameter_candidates(sim: _Simulator, base, keys, terms: list[Term], maxite
                     "screened_only": i >= PARAMETER_FITS, "term": Term("parameter", p.name, (p,), {p.name: fit["x"]}),
                     "null_fit": null_fit})
     return out
+
+
+def _identifiability(sim: _Simulator, sims0: list[dict], base, effects: list[str], keys: list[str],
+                     current: dict, gate: float, gap_before: float) -> dict:
+    """Which candidates the channels given can tell apart, before calibrating
+    (:mod:`rotorlanding.identifiability`). Each effect is landed at the top of its first
+    parameter's range (the strongest the catalogue allows: an effect not seen there is not seen
+    at all), each parameter at both its screening points (the larger change counts): the values
+    step one's calibration grid and screening land, so with the simulator's memo the probes cost
+    no landing of their own."""
+    from .identifiability import assess, signature
+
+    probes, extras, owner = [], [], []
+    for name in effects:
+        eff = CATALOGUE[name]
+        on = [f"effects.{name}=true"]
+        reason = _not_applicable(sim, on, eff)
+        if reason:
+            probes.append({"name": name, "kind": "effect", "at": {}, "failed": f"not applicable: {reason}"})
+            continue
+        extra, at = on, {}
+        if eff.parameters:
+            p = eff.parameters[0]
+            lo, hi = (math.log10(p.lower), math.log10(p.upper)) if p.log else (p.lower, p.upper)
+            u = [float(u) for u in np.linspace(lo, hi, GRID_POINTS)][-1]  # _fit_1d's grid, its top
+            x = float(10 ** u) if p.log else u
+            extra, at = on + _param_overrides(p, x), {p.name: x}
+        probes.append({"name": name, "kind": "effect", "at": at})
+        extras.append(extra)
+        owner.append((len(probes) - 1, at))
+    for k in keys:
+        p = _parameter(k, base.bounds[k])
+        probes.append({"name": k, "kind": "parameter", "at": {}, "from": current.get(k)})
+        for x in _screen_points(p, current.get(k)):
+            extras.append(_param_overrides(p, x))
+            owner.append((len(probes) - 1, {k: x}))
+    names = [pt.name for pt in sim.points]
+    measured = [pt.features for pt in sim.points]
+    for (i, at), sims in zip(owner, sim.features(extras)):
+        probe = probes[i]
+        failed = [x["__error__"] for x in sims if "__error__" in x]
+        if failed:
+            probe.setdefault("failed", failed[0])
+            continue
+        change, sig = signature(sims0, sims, measured, names)
+        if change > probe.get("change", -1.0):
+            probe.update(change=change, signature=sig, at=at)
+            probe.pop("failed", None)
+    return assess(probes, gate, gap_before)
+
+
+def _not_applicable(sim: _Simulator, on: list[str], eff) -> str | None:
+    """Why the scenario cannot take the effect switched on (e.g. unbalance without an [unbalance]
+    table), or None. An effect whose only missing input is the parameter its fit supplies (the
+    worn drag torque) is applicable: probed again with it."""
+    from .scenario import load_scenario
+
+    probes = [on] + ([on + _param_overrides(eff.parameters[0], eff.parameters[0].lower)] if eff.parameters else [])
+    first_error = None
+    for probe in probes:
+        try:
+            for p in sim.points:
+                load_scenario(sim.scenario_path, sim.overrides(p, probe))
+            return None
+        except InputError as err:
+            first_error = first_error or err
+    return str(first_error)
 
 
 def _refit(sim: _Simulator, terms: list[Term], maxiter: int, start: dict) -> dict:
@@ -819,6 +891,11 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                 f"({offset['detected_s']:.6g} s); the model as it is fits the given offset with gap "
                                 f"{gap_before:.3f}, the detected one with {g_det:.3f}"
                                 + (": the given offset fits worse" if worse else ""))
+        # which candidates the channels can tell apart, said before any calibration (issue 20, point 8)
+        first = [n for n, on in base.effects.items() if not on and n in CATALOGUE
+                 and (n in candidates if candidates else not CATALOGUE[n].fault)]
+        ident = _identifiability(sim, sims0, base, first, list(parameters), current_values, gate, gap_before)
+        warnings += ident["warnings"]
         current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
         adjusted: list[str] = []
         step_gate, gate_now = gate, None   # gate_now: (overrides, _noise_gate) of the model named so far
@@ -1002,6 +1079,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                              "after": gate_margin(current_gap, final_gate,
                                                   (noise_final or noise).get("gate_se"))},
             "noise_gates": noise_history, "warnings": warnings, "time_offset": info.get("time_offset"),
+            "identifiability": ident,
             "absent_in_model_before": _absent_in_model(rows_before),
             "absent_in_model_after": _absent_in_model(current_rows),
             "gap_before": gap_before,
@@ -1292,6 +1370,42 @@ def _step_lines(steps: list[dict]) -> list[str]:
     return lines
 
 
+def _identifiability_lines(ident: dict | None, pairs_shown: int = 8) -> list[str]:
+    """The report's section on what the channels can tell apart (before calibrating)."""
+    if not ident:
+        return []
+    lines = ["", "## What the channels given can tell apart (before calibrating)", "",
+             ("Each candidate landed at the operating point(s) as step one's calibration lands it first: an effect "
+              "at the top of its first parameter's range (the strongest the catalogue allows), a parameter a quarter "
+              "of its bound's span either side of its value (the larger change shown). Change: the gap it opens "
+              "against the model as it is, over the features the data have; seen when above the noise gate "
+              f"({ident['gate']:.3g}). Carried by: the feature rows that change most (signed distance, in scales)."),
+             "",
+             "| candidate | kind | at | change | seen | carried by |", "|---|---|---|---|---|---|"]
+    for c in ident["candidates"]:
+        at = ", ".join(f"{k} = {v:.4g}" for k, v in c["at"].items()) or "on"
+        if c.get("failed"):
+            lines.append(f"| {c['name']} | {c['kind']} | {at} | - | not landed: {c['failed']} | - |")
+            continue
+        carried = "; ".join(f"{f['feature']} {f['distance']:+.2f}" for f in c.get("features", [])) or "-"
+        lines.append(f"| {c['name']} | {c['kind']} | {at} | {c['change']:.3g} | {'yes' if c['detectable'] else 'no'} "
+                     f"| {carried} |")
+    if ident.get("note"):
+        lines += ["", ident["note"][0].upper() + ident["note"][1:] + "."]
+    elif ident["pairs"]:
+        lines += ["", ("Pairs of seen candidates, most alike first: c is the correlation of their signatures; if one "
+                       f"explained the data's gap ({ident['gap_before']:.3g}) the other, fitted to it, would leave "
+                       "gap sqrt(1 - c^2) (c by magnitude where a parameter is involved: it may be too high or too "
+                       "low); inside the gate the data cannot choose between them."), "",
+                  "| pair | c | remainder | told apart |", "|---|---|---|---|"]
+        for q in ident["pairs"][:pairs_shown]:
+            lines.append(f"| {q['a']} / {q['b']} | {q['correlation']:+.2f} | {q['remainder']:.3g} | "
+                         f"{'yes' if q['told_apart'] else '**no**'} |")
+        if len(ident["pairs"]) > pairs_shown:
+            lines.append(f"| ({len(ident['pairs']) - pairs_shown} more in report.json) | | | |")
+    return lines
+
+
 def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path, clearance: float) -> list[str]:
     """report.md and a figure: overlay.png (a record: measured vs model before vs after, spectrum)
     or features.png (a feature table: per-point features measured vs before vs after)."""
@@ -1368,6 +1482,7 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
             + f" {d['distance_before']:.2f} -> {d['distance_after']:.2f} ({100 * d['share']:.0f} %)"
             for d in res["decisive_features"]) + "."]
     lines += _step_lines(res["steps"])
+    lines += _identifiability_lines(res.get("identifiability"))
     lines += ["", "## Candidates (effects the model lacks, and its uncertain parameters within their bounds)", "",
               "Score n ln(gap^2) + k ln n (n feature rows, k fitted numbers: an effect's parameters, 1 for a parameter "
               "moved within its bound): each added freedom must pay for itself.", "",
