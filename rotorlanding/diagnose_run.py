@@ -1396,7 +1396,8 @@ def _identifiability_lines(ident: dict | None, pairs_shown: int = 8) -> list[str
         lines += ["", ("Pairs of seen candidates, most alike first: c is the correlation of their signatures; if one "
                        f"explained the data's gap ({ident['gap_before']:.3g}) the other, fitted to it, would leave "
                        "gap sqrt(1 - c^2) (c by magnitude where a parameter is involved: it may be too high or too "
-                       "low); inside the gate the data cannot choose between them."), "",
+                       "low); inside the gate the data cannot choose between them, which happens here above |c| = "
+                       f"{ident['correlation_limit']:.2f}."), "",
                   "| pair | c | remainder | told apart |", "|---|---|---|---|"]
         for q in ident["pairs"][:pairs_shown]:
             lines.append(f"| {q['a']} / {q['b']} | {q['correlation']:+.2f} | {q['remainder']:.3g} | "

@@ -32,6 +32,10 @@ import math
 from .features import WHIRL_SHARES, gap_points
 
 
+#: pairs warned about one by one; more are summed up in one warning
+MAX_PAIR_WARNINGS = 3
+
+
 def _row_key(r: dict) -> str:
     key = (f"{r['point']}: " if r.get("point") else "") + r["feature"]
     if r["feature"] == "whirl_direction":
@@ -107,19 +111,29 @@ def assess(probes: list[dict], gate: float, gap_before: float) -> dict:
         out["note"] = (f"the data's gap {gap_before:.3g} is inside the noise gate {gate:.3g}: there is nothing "
                        "for the candidates to explain, so none needs telling apart")
         return out
+    # a pair is told apart when sqrt(1 - c^2) > gate / gap_before: the nearer the gap to the gate,
+    # the less alike two signatures may be
+    out["correlation_limit"] = math.sqrt(1.0 - (gate / gap_before) ** 2)
     seen = [p for p in probes if not p.get("failed") and p["change"] > gate]
     for i, a in enumerate(seen):
         for b in seen[i + 1:]:
             c = correlation(a["signature"], b["signature"])
             c_eff = abs(c) if "parameter" in (a["kind"], b["kind"]) else max(c, 0.0)
             remainder = gap_before * math.sqrt(max(0.0, 1.0 - c_eff * c_eff))
-            apart = bool(remainder > gate)
             out["pairs"].append({"a": a["name"], "b": b["name"], "correlation": c, "remainder": remainder,
-                                 "told_apart": apart})
-            if not apart:
-                out["warnings"].append(
-                    f"{a['name']} and {b['name']} cannot be told apart with the channels given: their signatures "
-                    f"correlate {c:+.2f}, so either fitted to the data leaves at most {remainder:.3g} of the gap "
-                    f"{gap_before:.3g} for the other to explain, inside the noise gate {gate:.3g}")
+                                 "told_apart": bool(remainder > gate)})
     out["pairs"].sort(key=lambda r: -abs(r["correlation"]))
+    alike = [q for q in out["pairs"] if not q["told_apart"]]
+    if len(alike) <= MAX_PAIR_WARNINGS:
+        out["warnings"] = [
+            f"{q['a']} and {q['b']} cannot be told apart with the channels given: their signatures correlate "
+            f"{q['correlation']:+.2f}, so either fitted to the data leaves at most {q['remainder']:.3g} of the gap "
+            f"{gap_before:.3g} for the other to explain, inside the noise gate {gate:.3g}" for q in alike]
+    else:
+        # one line, not a flood: with the gap just above the gate almost every pair is alike
+        out["warnings"] = [
+            f"{len(alike)} of {len(out['pairs'])} pairs of candidates cannot be told apart with the channels given: "
+            f"the data's gap {gap_before:.3g} is only {gap_before / gate:.2f} x the noise gate {gate:.3g}, so only "
+            f"signatures correlating below {out['correlation_limit']:.2f} can be; most alike: "
+            + ", ".join(f"{q['a']} / {q['b']} ({q['correlation']:+.2f})" for q in alike[:MAX_PAIR_WARNINGS])]
     return out

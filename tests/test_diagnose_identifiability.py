@@ -132,3 +132,14 @@ def test_windage_and_ball_drag_told_apart_before_calibrating(tmp_path):
     finally:
         dr._identifiability = real
     assert bare["simulations"] == res["simulations"] and bare["gap_after"] == res["gap_after"]
+
+
+def test_many_alike_pairs_are_one_warning():
+    """A gap just above the gate leaves almost nothing to tell apart: one warning that says why,
+    with the correlation limit sqrt(1 - (gate / gap)^2), not one line per pair."""
+    probes = [_probe(f"p{i}", "parameter", _moved(1.0 + 0.3 * i, 0.2 * i)) for i in range(5)]
+    r = assess(probes, gate=0.3, gap_before=0.31)
+    assert r["correlation_limit"] == pytest.approx(math.sqrt(1 - (0.3 / 0.31) ** 2))
+    flagged = [q for q in r["pairs"] if not q["told_apart"]]
+    assert len(flagged) > 3 and len(r["warnings"]) == 1 and f"{len(flagged)} of 10 pairs" in r["warnings"][0]
+    assert all(abs(q["correlation"]) > r["correlation_limit"] for q in flagged)
