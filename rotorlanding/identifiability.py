@@ -107,6 +107,9 @@ def assess(probes: list[dict], gate: float, gap_before: float) -> dict:
             c.update(change=p["change"], detectable=bool(p["change"] > gate), features=top_rows(p["signature"]))
         cands.append(c)
     out = {"gate": gate, "gap_before": gap_before, "candidates": cands, "pairs": [], "warnings": []}
+    if not math.isfinite(gap_before):
+        out["note"] = "the data and the model share no feature to compare: nothing can be told apart"
+        return out
     if not gap_before > gate:
         out["note"] = (f"the data's gap {gap_before:.3g} is inside the noise gate {gate:.3g}: there is nothing "
                        "for the candidates to explain, so none needs telling apart")
