@@ -362,6 +362,9 @@ def cmd_diagnose(args) -> int:
         print(f"  {n}: {res['signatures'][n]}")
     for q in res["named_parameters"]:
         print(f"  parameter {q['key']}: {q['from']} -> {q['to']:.4g} (bound {q['bound'][0]:g}-{q['bound'][1]:g})")
+    for n, others in (res.get("named_alike") or {}).items():
+        print(f"  {n} could not be told from " + ", ".join(o["other"] for o in others)
+              + " with these channels (before calibrating): read the choice with care")
     if res.get("decisive_features") and (res["named_effects"] or res["named_parameters"]):
         print("  decided on: " + ", ".join(f"{d['feature']}" + (f" ({d['point']})" if d["point"] else "")
                                           + f" {100 * d['share']:.0f} %" for d in res["decisive_features"]))

@@ -1051,6 +1051,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             noise_final, final_gate = None, gate
     finally:
         sim.close()
+    from .identifiability import alike_with
+
     effects_named = [t.name for t in terms if t.kind == "effect"]
     param_terms = [t for t in terms if t.kind == "parameter"]
     unexplained = bool(math.isfinite(current_gap) and current_gap > final_gate)
@@ -1080,6 +1082,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                                   (noise_final or noise).get("gate_se"))},
             "noise_gates": noise_history, "warnings": warnings, "time_offset": info.get("time_offset"),
             "identifiability": ident,
+            # a name chosen among candidates the channels could not tell apart is a weaker statement
+            "named_alike": {n: alike_with(ident, n) for n in effects_named + [t.name for t in param_terms]
+                            if alike_with(ident, n)},
             "absent_in_model_before": _absent_in_model(rows_before),
             "absent_in_model_after": _absent_in_model(current_rows),
             "gap_before": gap_before,
@@ -1477,6 +1482,10 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
                          + (f" Still different at {', '.join(still)}." if still else ""))
     elif not res.get("named_parameters"):
         lines.append("No candidate effect or parameter explains the disagreement significantly (null answer).")
+    for n, others in (res.get("named_alike") or {}).items():
+        lines += ["", f"Read **{n}** with care: before calibrating, the channels could not tell it from "
+                  + ", ".join(f"{o['other']} (c {o['correlation']:+.2f})" for o in others)
+                  + " (section below); the ranking chose it on the calibrated gaps."]
     if res.get("decisive_features") and (res["named_effect"] or res.get("named_parameters")):
         lines += ["", "The decision rests on (share of the fall of the squared gap): " + "; ".join(
             f"{d['feature']}" + (f" ({d['point']})" if d["point"] else "")

@@ -140,3 +140,12 @@ def assess(probes: list[dict], gate: float, gap_before: float) -> dict:
             f"signatures correlating below {out['correlation_limit']:.2f} can be; most alike: "
             + ", ".join(f"{q['a']} / {q['b']} ({q['correlation']:+.2f})" for q in alike[:MAX_PAIR_WARNINGS])]
     return out
+
+
+def alike_with(ident: dict | None, name: str) -> list[dict]:
+    """The candidates found alike ``name`` before calibrating (pairs not told apart), most alike first."""
+    out = []
+    for q in (ident or {}).get("pairs", []):
+        if not q["told_apart"] and name in (q["a"], q["b"]):
+            out.append({"other": q["b"] if q["a"] == name else q["a"], "correlation": q["correlation"]})
+    return out

@@ -143,3 +143,13 @@ def test_many_alike_pairs_are_one_warning():
     flagged = [q for q in r["pairs"] if not q["told_apart"]]
     assert len(flagged) > 3 and len(r["warnings"]) == 1 and f"{len(flagged)} of 10 pairs" in r["warnings"][0]
     assert all(abs(q["correlation"]) > r["correlation_limit"] for q in flagged)
+
+
+def test_alike_with_lists_the_pairs_not_told_apart():
+    from rotorlanding.identifiability import alike_with
+
+    probes = [_probe("a", "effect", _moved(rebound_scales=2.0)), _probe("b", "effect", _moved(rebound_scales=0.8)),
+              _probe("c", "effect", _moved(decel_scales=2.0))]
+    r = assess(probes, gate=0.3, gap_before=1.5)
+    assert [o["other"] for o in alike_with(r, "a")] == ["b"] and alike_with(r, "c") == []
+    assert alike_with(None, "a") == []
