@@ -95,6 +95,7 @@ def ensemble_stats(members: list[dict]) -> dict:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
         if len(freqs) >= 2:
             out["frequency_se_hz"] = _median_se(freqs)
+        out["frequency_locks"] = frequency_locks(freqs)
         if onsets:
             out["onset_range_s"] = [min(onsets), max(onsets)]
         if len(onsets) >= 2:
@@ -137,6 +138,28 @@ def _majority(counts: Counter) -> str:
     top = max(counts.values())
     classes = [c for c, k in counts.items() if k == top]
     return next((c for c in ("backward", "forward") if c in classes), classes[0])
+
+
+#: two whirl frequencies of an ensemble belong to different locks (rotor modes the whirl locked
+#: to) when no chain of drops closer than this joins them: drops of one lock agree within ~0.5 Hz
+#: (the rig's 7000 rpm whirl: 63.7-63.8 Hz), different modes lie several Hz apart (10000 rpm:
+#: 72.7-73.2 and 78.9-79.4 Hz in session 24's validate)
+LOCK_GAP_HZ = 2.0
+
+
+def frequency_locks(freqs, gap_hz: float = LOCK_GAP_HZ) -> list[tuple[float, int]]:
+    """The whirl frequencies of an ensemble's drops grouped into locks: sorted, split wherever two
+    neighbours differ by more than ``gap_hz``; each lock as (its median [Hz], its number of drops),
+    most drops first. One lock: the ensemble's median describes it; several: the median of the
+    drops follows the split between them, and the standard error of a median understates a jump."""
+    fs = sorted(float(f) for f in freqs if f is not None)
+    groups: list[list[float]] = []
+    for f in fs:
+        if groups and f - groups[-1][-1] <= gap_hz:
+            groups[-1].append(f)
+        else:
+            groups.append([f])
+    return sorted(((median(g), len(g)) for g in groups), key=lambda m: (-m[1], m[0]))
 
 
 def _median_se(vals) -> float:

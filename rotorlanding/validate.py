@@ -23,7 +23,7 @@ import platform
 import time
 from pathlib import Path
 
-from .ensemble import drop_offsets, ensemble_stats, member_result
+from .ensemble import LOCK_GAP_HZ, drop_offsets, ensemble_stats, member_result
 from .errors import InputError
 from .runner import run_all, warm_model
 from .safeio import WriteError, atomic_write_text, save_figure
@@ -888,13 +888,19 @@ def report_markdown(result: dict) -> str:
                   "A landing near a whirl threshold is chaotic: which way it goes can hang on micrometres. "
                   "The share of drops in each class is the designer's answer to \"will it whirl?\". Landing whirl: "
                   "the DE journal's when it whirls, else that of the bearing whose journal whirls first "
-                  "(`whirl.landing_whirl_bearing`). Persistence: share of the time after onset spent whirling.", "",
+                  "(`whirl.landing_whirl_bearing`). Persistence: share of the time after onset spent whirling. "
+                  "Locks: where the drops' whirl frequencies fall into groups more than "
+                  f"{LOCK_GAP_HZ:g} Hz apart (rotor modes the whirl locked to), each group's median and its "
+                  "number of drops; the median of all drops then follows the split.", "",
                   "| case | drops per class | majority | whirl found at | DE journal: drops per class | "
                   "median frequency [Hz] (+/- s.e.) | median onset [s] | median persistence | centred drop |",
                   "|---|---|---|---|---|---|---|---|---|"]
         for key, e in ensembles.items():
             se = e.get("frequency_se_hz")
             f = _fmt(e["frequency_hz"]) + (f" +/- {se:.2g}" if se is not None and e["frequency_hz"] else "")
+            locks = e.get("frequency_locks") or []
+            if len(locks) > 1:  # the median follows the split between locked modes: show them
+                f += " (locks: " + ", ".join(f"{_fmt(m)} x{k}" for m, k in locks) + ")"
             cw = s[key]["whirl"] if key in s else None
             at = ", ".join(f"{k} {v}" for k, v in e.get("bearings", {}).items()) or "-"
             de = ", ".join(f"{k} {v}" for k, v in e.get("de", {}).get("counts", {}).items()) or "-"

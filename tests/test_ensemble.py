@@ -137,3 +137,18 @@ def test_ensemble_reports_the_de_journal_and_standard_errors_of_the_ranges():
     assert st["v_force_range_se_n"] == [0.0, 0.0]
     two = ensemble_stats(members[2:3] * 3 + members[:1])
     assert two["de"]["direction"] == "forward" and two["de"]["frequency_hz"] == pytest.approx(45.0)
+
+
+def test_frequency_locks_split_the_drops_between_modes():
+    """Session 24's 10000 rpm ensemble: 5 drops at 72.7-73.2 Hz and 3 at 78.9-79.4 Hz are two locks,
+    and their median of 8 (73.0) describes neither split; one lock when the drops agree."""
+    from rotorlanding.ensemble import frequency_locks
+
+    f = [72.7, 79.4, 72.7, 72.7, 78.9, 72.8, 73.2, 79.3]
+    assert frequency_locks(f) == [(72.7, 5), (79.3, 3)]
+    assert frequency_locks([63.7, 63.8, 63.7, 63.8]) == [(63.75, 4)]
+    # a chain of neighbours closer than the gap is one lock, however wide it is overall
+    assert frequency_locks([40.0, 41.5, 43.0, 44.5]) == [(42.25, 4)]
+    assert frequency_locks([]) == []
+    m = [{"direction": "forward", "frequency_hz": x, "onset_s": 0.1} for x in f]
+    assert ensemble_stats(m)["frequency_locks"] == [(72.7, 5), (79.3, 3)]
