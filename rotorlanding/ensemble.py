@@ -93,9 +93,13 @@ def ensemble_stats(members: list[dict]) -> dict:
            "onset_s": median(onsets) if onsets and whirl else None}
     if whirl:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
+        out["frequency_locks"] = frequency_locks(freqs)
         if len(freqs) >= 2:
             out["frequency_se_hz"] = _median_se(freqs)
-        out["frequency_locks"] = frequency_locks(freqs)
+            if len(out["frequency_locks"]) > 1:
+                # drops split between locked modes: the median jumps with the split, which the
+                # large-sample rule (a smooth, single-peaked spread) understates; the bootstrap sees it
+                out["frequency_se_hz"] = max(out["frequency_se_hz"], bootstrap_median_se(freqs))
         if onsets:
             out["onset_range_s"] = [min(onsets), max(onsets)]
         if len(onsets) >= 2:
@@ -160,6 +164,20 @@ def frequency_locks(freqs, gap_hz: float = LOCK_GAP_HZ) -> list[tuple[float, int
         else:
             groups.append([f])
     return sorted(((median(g), len(g)) for g in groups), key=lambda m: (-m[1], m[0]))
+
+
+def bootstrap_median_se(vals, resamples: int = 4000, seed: int = 0) -> float:
+    """Standard error of the median of ``vals`` by the bootstrap (seeded, so a report repeats): the
+    standard deviation of the medians of ``resamples`` resamples with replacement. For drops split
+    between two whirl locks (5 at 72.7-73.2 Hz, 3 at 78.9-79.4 Hz) it gives 2.2 Hz, where the
+    large-sample rule gives 1.5 and the median of 8 drops from such a population scatters by 2.2
+    (tests/test_ensemble.py)."""
+    import numpy as np
+
+    x = np.asarray(list(vals), dtype=float)
+    rng = np.random.default_rng(seed)
+    meds = np.median(rng.choice(x, size=(resamples, len(x)), replace=True), axis=1)
+    return float(np.std(meds, ddof=1))
 
 
 def _median_se(vals) -> float:
