@@ -95,11 +95,7 @@ def ensemble_stats(members: list[dict]) -> dict:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
         out["frequency_locks"] = frequency_locks(freqs)
         if len(freqs) >= 2:
-            out["frequency_se_hz"] = _median_se(freqs)
-            if len(out["frequency_locks"]) > 1:
-                # drops split between locked modes: the median jumps with the split, which the
-                # large-sample rule (a smooth, single-peaked spread) understates; the bootstrap sees it
-                out["frequency_se_hz"] = max(out["frequency_se_hz"], bootstrap_median_se(freqs))
+            out["frequency_se_hz"] = _frequency_se(freqs)
         if onsets:
             out["onset_range_s"] = [min(onsets), max(onsets)]
         if len(onsets) >= 2:
@@ -132,7 +128,8 @@ def ensemble_stats(members: list[dict]) -> dict:
         f_de = [m["de_frequency_hz"] for m in de if m["de_direction"] == de_dir and m.get("de_frequency_hz")]
         out["de"] = {"counts": dict(de_counts), "direction": de_dir,
                      "frequency_hz": median(f_de) if f_de and de_dir != "none" else None,
-                     "frequency_se_hz": _median_se(f_de) if len(f_de) >= 2 and de_dir != "none" else None}
+                     "frequency_se_hz": _frequency_se(f_de) if len(f_de) >= 2 and de_dir != "none" else None,
+                     "frequency_locks": frequency_locks(f_de) if de_dir != "none" else []}
     return out
 
 
@@ -164,6 +161,14 @@ def frequency_locks(freqs, gap_hz: float = LOCK_GAP_HZ) -> list[tuple[float, int
         else:
             groups.append([f])
     return sorted(((median(g), len(g)) for g in groups), key=lambda m: (-m[1], m[0]))
+
+
+def _frequency_se(freqs) -> float:
+    """The standard error of the median whirl frequency: the large-sample rule, or, where the drops
+    split between locked modes (:func:`frequency_locks`), the larger of it and the bootstrap's: the
+    median then jumps with the split, which the rule (a smooth, single-peaked spread) understates."""
+    se = _median_se(freqs)
+    return max(se, bootstrap_median_se(freqs)) if len(frequency_locks(freqs)) > 1 else se
 
 
 def bootstrap_median_se(vals, resamples: int = 4000, seed: int = 0) -> float:

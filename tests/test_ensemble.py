@@ -176,3 +176,14 @@ def test_two_locks_widen_the_median_standard_error_to_the_bootstrap():
     one = [63.7, 63.8, 63.7, 63.8, 63.75, 63.72, 63.78, 63.74]
     m1 = [{"direction": "forward", "frequency_hz": x, "onset_s": 0.1} for x in one]
     assert ensemble_stats(m1)["frequency_se_hz"] == pytest.approx(_median_se(one))
+
+
+def test_the_de_journal_frequency_error_follows_its_locks_too():
+    """The Fig. 39 rows read the DE journal's own frequencies (``de``): the same rule applies there."""
+    from rotorlanding.ensemble import bootstrap_median_se
+
+    f = [72.7, 79.4, 72.7, 72.7, 78.9, 72.8, 73.2, 79.3]
+    m = [{"direction": "forward", "frequency_hz": x, "onset_s": 0.1, "de_direction": "forward",
+          "de_frequency_hz": x} for x in f]
+    de = ensemble_stats(m)["de"]
+    assert de["frequency_se_hz"] == pytest.approx(bootstrap_median_se(f)) and len(de["frequency_locks"]) == 2
