@@ -600,6 +600,8 @@ def _identifiability(sim: _Simulator, sims0: list[dict], base, effects: list[str
         change, sig = signature(sims0, sims, measured, names)
         if change > probe.get("change", -1.0):
             probe.update(change=change, signature=sig, at=at)
+    for probe in probes:
+        if "change" in probe:  # one screening point landed: the probe stands on it
             probe.pop("failed", None)
     return assess(probes, gate, gap_before)
 

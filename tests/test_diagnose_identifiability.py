@@ -153,3 +153,26 @@ def test_alike_with_lists_the_pairs_not_told_apart():
     r = assess(probes, gate=0.3, gap_before=1.5)
     assert [o["other"] for o in alike_with(r, "a")] == ["b"] and alike_with(r, "c") == []
     assert alike_with(None, "a") == []
+
+
+def test_a_parameter_probe_stands_on_the_screening_point_that_landed():
+    """One screening point fails to land (a solver failure at that value), the other lands: the
+    candidate is judged on the one that landed, not reported as failed."""
+    from types import SimpleNamespace
+
+    from rotorlanding.diagnose_run import Point, _identifiability
+
+    key = "contact.mu_rad"
+
+    class FakeSim:
+        points = [Point("", [], BASE)]
+
+        def features(self, extras):
+            # screening points 0.15 -/+ a quarter of the span 0.05-0.5, lower first: the upper fails
+            return [[{"__error__": "SolverError"}] if float(e[0].split("=")[1]) > 0.15 else [_moved(2.0, 0.0)]
+                    for e in extras]
+
+    base = SimpleNamespace(bounds={key: SimpleNamespace(min=0.05, max=0.5, log=False)})
+    r = _identifiability(FakeSim(), [BASE], base, [], [key], {key: 0.15}, gate=0.3, gap_before=1.5)
+    (c,) = r["candidates"]
+    assert "failed" not in c and c["detectable"] and c["at"][key] < 0.15
