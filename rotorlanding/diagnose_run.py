@@ -46,6 +46,7 @@ from scipy.optimize import minimize_scalar
 from .effects import CATALOGUE
 from .errors import InputError
 from .features import ABSENT_FEATURE_DISTANCE, JOURNALS, extract_features, gap_points
+from .identifiability import alike_with, assess, signature
 from .measured import Measurement
 from .mechanisms import rotor_force
 from .runner import Pool, reduction_cache
@@ -555,6 +556,14 @@ def _parameter_candidates(sim: _Simulator, base, keys, terms: list[Term], maxite
     return out
 
 
+def _lacking(base, named: list[str], candidates) -> list[str]:
+    """The effects a step may add: switched off in the model, in the catalogue, not named yet, and
+    among ``candidates`` when given; faults (a worn bearing) only on request, as a healthy rig's gap
+    is not a fault."""
+    return [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named
+            and (n in candidates if candidates else not CATALOGUE[n].fault)]
+
+
 def _identifiability(sim: _Simulator, sims0: list[dict], base, effects: list[str], keys: list[str],
                      current: dict, gate: float, gap_before: float) -> dict:
     """Which candidates the channels given can tell apart, before calibrating
@@ -563,8 +572,6 @@ def _identifiability(sim: _Simulator, sims0: list[dict], base, effects: list[str
     at all), each parameter at both its screening points (the larger change counts): the values
     step one's calibration grid and screening land, so with the simulator's memo the probes cost
     no landing of their own."""
-    from .identifiability import assess, signature
-
     probes, extras, owner = [], [], []
     for name in effects:
         eff = CATALOGUE[name]
@@ -894,9 +901,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                 f"{gap_before:.3f}, the detected one with {g_det:.3f}"
                                 + (": the given offset fits worse" if worse else ""))
         # which candidates the channels can tell apart, said before any calibration (issue 20, point 8)
-        first = [n for n, on in base.effects.items() if not on and n in CATALOGUE
-                 and (n in candidates if candidates else not CATALOGUE[n].fault)]
-        ident = _identifiability(sim, sims0, base, first, list(parameters), current_values, gate, gap_before)
+        ident = _identifiability(sim, sims0, base, _lacking(base, [], candidates), list(parameters), current_values,
+                                 gate, gap_before)
         warnings += ident["warnings"]
         current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
         adjusted: list[str] = []
@@ -904,11 +910,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
         step_se = noise.get("gate_se")      # the standard error of the gate the step is judged against
         own = None                         # (overrides, _noise_gate) of the last step's best candidate
         for k_step in range(max_effects):
-            lacking = [n for n, on in base.effects.items() if not on and n in CATALOGUE and n not in named]
-            if candidates:
-                lacking = [n for n in lacking if n in candidates]
-            else:  # faults (a worn bearing) only on request: a healthy rig's gap is not a fault
-                lacking = [n for n in lacking if not CATALOGUE[n].fault]
+            lacking = _lacking(base, named, candidates)
             params_left = [k for k in parameters if k not in adjusted]
             if not lacking and not params_left:
                 break
@@ -1053,8 +1055,6 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             noise_final, final_gate = None, gate
     finally:
         sim.close()
-    from .identifiability import alike_with
-
     effects_named = [t.name for t in terms if t.kind == "effect"]
     param_terms = [t for t in terms if t.kind == "parameter"]
     unexplained = bool(math.isfinite(current_gap) and current_gap > final_gate)
@@ -1085,8 +1085,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             "noise_gates": noise_history, "warnings": warnings, "time_offset": info.get("time_offset"),
             "identifiability": ident,
             # a name chosen among candidates the channels could not tell apart is a weaker statement
-            "named_alike": {n: alike_with(ident, n) for n in effects_named + [t.name for t in param_terms]
-                            if alike_with(ident, n)},
+            "named_alike": {n: a for n in effects_named + [t.name for t in param_terms] if (a := alike_with(ident, n))},
             "absent_in_model_before": _absent_in_model(rows_before),
             "absent_in_model_after": _absent_in_model(current_rows),
             "gap_before": gap_before,

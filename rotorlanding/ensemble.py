@@ -95,7 +95,7 @@ def ensemble_stats(members: list[dict]) -> dict:
         out["bearings"] = dict(Counter(m.get("bearing", "DE") for m in same))
         out["frequency_locks"] = frequency_locks(freqs)
         if len(freqs) >= 2:
-            out["frequency_se_hz"] = _frequency_se(freqs)
+            out["frequency_se_hz"] = _frequency_se(freqs, out["frequency_locks"])
         if onsets:
             out["onset_range_s"] = [min(onsets), max(onsets)]
         if len(onsets) >= 2:
@@ -126,10 +126,11 @@ def ensemble_stats(members: list[dict]) -> dict:
         de_counts = Counter(m["de_direction"] for m in de)
         de_dir = _majority(de_counts)
         f_de = [m["de_frequency_hz"] for m in de if m["de_direction"] == de_dir and m.get("de_frequency_hz")]
+        locks = frequency_locks(f_de) if de_dir != "none" else []
         out["de"] = {"counts": dict(de_counts), "direction": de_dir,
                      "frequency_hz": median(f_de) if f_de and de_dir != "none" else None,
-                     "frequency_se_hz": _frequency_se(f_de) if len(f_de) >= 2 and de_dir != "none" else None,
-                     "frequency_locks": frequency_locks(f_de) if de_dir != "none" else []}
+                     "frequency_se_hz": _frequency_se(f_de, locks) if len(f_de) >= 2 and de_dir != "none" else None,
+                     "frequency_locks": locks}
     return out
 
 
@@ -163,12 +164,13 @@ def frequency_locks(freqs, gap_hz: float = LOCK_GAP_HZ) -> list[tuple[float, int
     return sorted(((median(g), len(g)) for g in groups), key=lambda m: (-m[1], m[0]))
 
 
-def _frequency_se(freqs) -> float:
+def _frequency_se(freqs, locks: list) -> float:
     """The standard error of the median whirl frequency: the large-sample rule, or, where the drops
-    split between locked modes (:func:`frequency_locks`), the larger of it and the bootstrap's: the
-    median then jumps with the split, which the rule (a smooth, single-peaked spread) understates."""
+    split between locked modes (``locks``, :func:`frequency_locks` of ``freqs``), the larger of it and
+    the bootstrap's: the median then jumps with the split, which the rule (a smooth, single-peaked
+    spread) understates."""
     se = _median_se(freqs)
-    return max(se, bootstrap_median_se(freqs)) if len(frequency_locks(freqs)) > 1 else se
+    return max(se, bootstrap_median_se(freqs)) if len(locks) > 1 else se
 
 
 def bootstrap_median_se(vals, resamples: int = 4000, seed: int = 0) -> float:

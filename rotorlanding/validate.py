@@ -415,17 +415,16 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
         sim, exp = _paper_values(table, pkey)
         bd = band(sim, exp)
         err = None if ours is None else ours - exp
+        closer = None if err is None else abs(sim - exp) - abs(err)  # > 0: closer than the paper's simulation
         check("table", name, f"|ours - {exp * scale:g}| <= {bd * scale:.3g} {unit} (max of 10 % and the paper's "
               f"simulation error)", err is not None and abs(err) <= bd, margin=None if err is None else bd - abs(err),
               se=se, ours=ours, paper_simulated=sim, paper_experimental=exp, band=bd, unit=unit, scale=scale,
               relative_error=_rel(ours, exp), provenance=prov[key],
-              closer_than_paper=None if err is None else abs(err) < abs(sim - exp),
-              # how much closer (negative: further) than the paper's simulation, and whether that is
-              # inside our standard error: the 10000 rpm frequency's median moves between two locks
-              # from one install to another (78.8 Hz published, 73.0 on a fresh install of session 24,
-              # s.e. 1.5 Hz) and "closer" flipped with it
-              closer_margin=None if err is None else abs(sim - exp) - abs(err),
-              closer_within_noise=bool(err is not None and se is not None and abs(abs(sim - exp) - abs(err)) < se))
+              closer_than_paper=None if closer is None else closer > 0,
+              # whether "closer" is inside our standard error: the 10000 rpm frequency's median moves
+              # between two locks from one install to another (78.8 Hz published, 73.0 on a fresh
+              # install of session 24) and "closer" flipped with it
+              closer_margin=closer, closer_within_noise=bool(closer is not None and se is not None and abs(closer) < se))
 
     def classes(key, want, name, rule, where="landing"):
         w = _judged(s, ensembles, key)[0]
