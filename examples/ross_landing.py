@@ -24,14 +24,7 @@ import rotorlanding as rl  # noqa: E402
 from _common import SCENARIOS, arguments  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-args = arguments(__doc__, "ross_landing")
 ROSS_FILE = Path(__file__).resolve().parent / "data" / "compressor_ross.toml"
-
-# the catcher-bearing sleeves at ROSS nodes 0 and 10; their names are the scenario's bearing stations
-rotor = rl.Rotor.from_ross(ROSS_FILE, catcher_nodes={"NDE_sleeve": 0, "DE_sleeve": 10}, reduction_modes=12,
-                           name="compressor rotor from ROSS")
-print(rotor)
-rotor.to_toml(args.out / "rotor.toml")  # the converted rotor as a rotorlanding rotor file
 
 
 def draw_rotor(rotor, path):
@@ -78,27 +71,42 @@ def draw_rotor(rotor, path):
     plt.close(fig)
 
 
-draw_rotor(rotor, args.out / "rotor.png")
+def main(argv=None):
+    """The example's work: convert the ROSS rotor, draw it, print its modes and land it from 7000 rpm
+    into --out; returns the landing."""
+    args = arguments(__doc__, "ross_landing", argv)
 
-# natural frequencies on the ROSS bearings (the supports), the same as ROSS's own (docs/ross.md)
-modes = rotor.modes([0.0, 7000.0], n_modes=4)
-table = modes.to_dict()
-for speed, per_speed in zip(table["speeds_rpm"], table["modes"]):
-    print(f"{speed:6.0f} rpm:", "  ".join(f"{m['frequency_hz']:.1f} Hz ({m['whirl']}, zeta {m['damping_ratio']:.3f})"
-                                         for m in per_speed))
-modes.campbell(args.out / "campbell.png", points=5 if args.short else 41)
+    # the catcher-bearing sleeves at ROSS nodes 0 and 10; their names are the scenario's bearing stations
+    rotor = rl.Rotor.from_ross(ROSS_FILE, catcher_nodes={"NDE_sleeve": 0, "DE_sleeve": 10}, reduction_modes=12,
+                               name="compressor rotor from ROSS")
+    print(rotor)
+    rotor.to_toml(args.out / "rotor.toml")  # the converted rotor as a rotorlanding rotor file
+    draw_rotor(rotor, args.out / "rotor.png")
 
-# drop it from 7000 rpm onto the rig's catcher bearings (the AMBs switch off at t = 0)
-scenario = rl.Scenario.load(SCENARIOS / "landing_7000rpm.toml").with_rotor(rotor)
-landing = rl.simulate(scenario, t_end=0.05 if args.short else 0.5)
-print(landing)
-peaks = {b: s["max_contact_force_n"] for b, s in landing.summary["bearings"].items()}
-print("peak contact force on the rotor:", ", ".join(f"{b} {f / 1e3:.2f} kN" for b, f in peaks.items()),
-      f"(rotor weight {rotor.mass * 9.80665 / 1e3:.2f} kN)")
-w = landing.whirl
-print(f"whirl: {w['direction']}" + (f" at {w['frequency_hz']:.1f} Hz from {w['onset_s']:.3f} s" if w["frequency_hz"] else ""))
-landing.plot_orbits(args.out / "orbits.png")
-landing.plot_displacements(args.out / "displacements.png")
-landing.plot_forces(args.out / "forces.png")
-landing.save(args.out / "results.h5")
-print(f"figures and results.h5 in {args.out}")
+    # natural frequencies on the ROSS bearings (the supports), the same as ROSS's own (docs/ross.md)
+    modes = rotor.modes([0.0, 7000.0], n_modes=4)
+    table = modes.to_dict()
+    for speed, per_speed in zip(table["speeds_rpm"], table["modes"]):
+        print(f"{speed:6.0f} rpm:", "  ".join(f"{m['frequency_hz']:.1f} Hz ({m['whirl']}, zeta {m['damping_ratio']:.3f})"
+                                             for m in per_speed))
+    modes.campbell(args.out / "campbell.png", points=5 if args.short else 41)
+
+    # drop it from 7000 rpm onto the rig's catcher bearings (the AMBs switch off at t = 0)
+    scenario = rl.Scenario.load(SCENARIOS / "landing_7000rpm.toml").with_rotor(rotor)
+    landing = rl.simulate(scenario, t_end=0.05 if args.short else 0.5)
+    print(landing)
+    peaks = {b: s["max_contact_force_n"] for b, s in landing.summary["bearings"].items()}
+    print("peak contact force on the rotor:", ", ".join(f"{b} {f / 1e3:.2f} kN" for b, f in peaks.items()),
+          f"(rotor weight {rotor.mass * 9.80665 / 1e3:.2f} kN)")
+    w = landing.whirl
+    print(f"whirl: {w['direction']}" + (f" at {w['frequency_hz']:.1f} Hz from {w['onset_s']:.3f} s" if w["frequency_hz"] else ""))
+    landing.plot_orbits(args.out / "orbits.png")
+    landing.plot_displacements(args.out / "displacements.png")
+    landing.plot_forces(args.out / "forces.png")
+    landing.save(args.out / "results.h5")
+    print(f"figures and results.h5 in {args.out}")
+    return landing
+
+
+if __name__ == "__main__":
+    main()

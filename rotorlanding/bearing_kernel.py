@@ -272,7 +272,7 @@ def _radial_jac(dy, dz, dvy, dvz, om, omi, P, J):
 @_njit
 def bearing_jacobian(P, q, v, ta, tb, fq, fv, out):
     """out[9, 9] = -(fq dF/dq + fv dF/dv) (Exudyn's jacobianUserFunction of a force on the RHS)."""
-    sy, sz, th, x, ry, rz, rphi, oy, oz = q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8]
+    sy, sz, _th, x, ry, rz, rphi, oy, oz = q[0], q[1], q[2], q[3], q[4], q[5], q[6], q[7], q[8]
     vsy, vsz, om, xd, vry, vrz, omi, voy, voz = v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]
     Jq = np.zeros((9, 9))
     Jv = np.zeros((9, 9))

@@ -22,7 +22,6 @@ job function ``fn(job) -> result`` and a list of jobs; one driver runs them. Her
 from __future__ import annotations
 
 import hashlib
-import os
 import traceback
 from dataclasses import dataclass, replace
 

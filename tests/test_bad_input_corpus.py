@@ -13,8 +13,6 @@ command.
 from __future__ import annotations
 
 import collections
-import contextlib
-import io
 import json
 import os
 import subprocess

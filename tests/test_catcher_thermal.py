@@ -6,7 +6,6 @@ layer's own exact stepper (user_forces.thermal.step_exact) on the five-node netw
 short landing the energy ledger (heat in = the routed dissipated energies) and conservation (heat in
 = heat stored from the capacities + heat lost)."""
 
-import math
 from pathlib import Path
 
 import numpy as np

@@ -90,7 +90,7 @@ def test_each_candidate_is_refitted_with_what_was_named_before_it_is_ranked():
     the landings with that structure: rows a + b - 0.4 (what both frictions do) and a - 0.2 (the
     face rub alone); truth a = b = 0.2. a alone fits 0.3 (gap 0.141), b beside the held a fits 0.1
     (gap 0.1); one round of the joint re-fit (a given b, then b given a) gives 0.25 / 0.15, gap 0.05."""
-    from rotorlanding.diagnose_run import Point, Term, _calibrate, _joint_refit
+    from rotorlanding.diagnose_run import Point, _calibrate, _joint_refit
     from rotorlanding.effects import CATALOGUE
 
     root = Path(__file__).resolve().parents[1]

@@ -78,7 +78,7 @@ def test_example_full(script, tmp_path):
     _run(script, tmp_path)
 
 
-@pytest.mark.parametrize("name", ["build_rotor_and_land", "coastdown", "diagnose_measured"])
+@pytest.mark.parametrize("name", [p.stem for p in sorted(EXAMPLES.glob("*.py")) if not p.name.startswith("_")])
 def test_importing_an_example_runs_nothing(name, tmp_path, capsys, monkeypatch):
     """A user can import the example and call ``main(argv)``: importing builds, prints and writes
     nothing (the script's work sits in ``main``)."""

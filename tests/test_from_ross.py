@@ -16,7 +16,6 @@ import pytest
 import rotorlanding as rl
 from rotorlanding.cli import main
 from rotorlanding.from_ross import is_ross_layout, rotor_table
-from rotorlanding.timoshenko import assemble
 
 FIX = Path(__file__).resolve().parent / "fixtures" / "ross"
 REF = json.loads((FIX / "ross_frequencies.json").read_text())

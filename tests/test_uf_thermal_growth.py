@@ -10,7 +10,7 @@ import pytest
 
 from user_forces.ball_bearing import harris_palmgren_constants, harris_palmgren_torque
 from user_forces.contact_stress import BEARING_7212BE_ASSUMED as G, ball_stiffness_kn
-from user_forces.thermal import INNER, catcher_bearing_network, steady_state
+from user_forces.thermal import catcher_bearing_network, steady_state
 from user_forces.thermal_growth import (FeedbackModel, drag_state, internal_clearance_change,
                                         journal_clearance_change, linear_growth, preloaded_drag_torque,
                                         steady_with_feedback, thermal_preload, transient_with_feedback)
