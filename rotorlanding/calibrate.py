@@ -30,7 +30,14 @@ scored again, and the next ``verify_top`` after them while none of a batch has c
 2 % (and the forward-case DE force within 5 %). An ensemble's median frequency is a statistic of
 chaotic drops with a standard error of a few per cent; for it the frequency tolerance is twice
 the standard error of the difference when that exceeds 2 %. Converged designs rank first, then unchecked
-ones, then unconverged ones. ``OUT/calibration.csv`` lists designs by score; the
+ones, then unconverged ones.
+
+On ensembles every score has a standard error (``score_se``: the medians' and shares' errors in
+quadrature), and ``within_noise_of_best`` marks the designs whose score lies within ``NOISE_Z``
+standard errors of the difference from the best's: the search cannot rank them, so their span
+(``within_noise_span`` in calibration.json, printed) is the fit's uncertainty in each unknown, and
+which of them comes first is a draw (on another install the first may be another of them).
+``OUT/calibration.csv`` lists designs by score; the
 best design's overrides are printed as ``--set`` arguments and TOML lines to paste into
 ``scenarios/rig/rig.toml`` (with the reasoning), after which ``rotorlanding validate`` reports.
 """
@@ -45,7 +52,7 @@ import math
 from pathlib import Path
 
 from .config import override_table, range_spec, sample_ranges, study_file
-from .ensemble import drop_offsets, ensemble_stats, member_result
+from .ensemble import drop_offsets, ensemble_stats, member_result, share_se
 from .errors import InputError
 from .runner import reduction_cache, run_all, warm_model
 from .safeio import atomic_write_text
@@ -156,6 +163,23 @@ def score(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> tuple
     is added as ``bw_persist``. ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
     the share of its drops that whirl, as ``bw015_whirls``. ``force = False`` leaves Table 2's force
     maximum out of the score (``score_force`` in the space file), so that it stays a prediction."""
+    parts = score_parts(res, cases, force=force)
+    return float(sum(v for v, _ in parts.values())), {k: v for k, (v, _) in parts.items()}
+
+
+def score_se(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> float | None:
+    """Standard error of ``score``: the parts' errors added in quadrature (the drops of each case are
+    their own draws). ``None`` when a part has no error to give: a single landing per case is one
+    draw of a chaotic landing, with no spread to measure."""
+    ses = [se for _, se in score_parts(res, cases, force=force).values()]
+    return None if any(se is None for se in ses) else math.sqrt(sum(se * se for se in ses))
+
+
+def score_parts(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> dict:
+    """``score``'s parts, each as (value, standard error). A fixed penalty (a class missed, a part
+    clipped at 1) has error 0; a median's error is the ensemble's (``frequency_se_hz``, ``onset_se_s``,
+    ``v_force_range_se_n``) over the experiment it is divided by; a share of drops has the binomial
+    error of ``ensemble.share_se``. ``None``: no error known (a single landing)."""
     parts = {}
     for case, rpm, f_exp in zip(("fw3000", "fw7000", "fw10000"), *[paper()["fig39"][k] for k in
                                                                     ("speed_rpm", "experimental_hz")]):
@@ -165,26 +189,67 @@ def score(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> tuple
         de = r.get("de")
         if de:  # an ensemble: judged at the DE journal, where the paper measured (as validate does)
             f_de = de.get("frequency_hz") if de.get("direction") == "forward" else None
-            parts[case] = abs(f_de - f_exp) / f_exp if f_de else 1.0
-            parts[case + "_de"] = 1.0 - de["counts"].get("forward", 0) / sum(de["counts"].values())
+            parts[case] = ((abs(f_de - f_exp) / f_exp, (de.get("frequency_se_hz") or 0.0) / f_exp) if f_de
+                           else (1.0, 0.0))
+            n, k = sum(de["counts"].values()), de["counts"].get("forward", 0)
+            parts[case + "_de"] = (1.0 - k / n, share_se(k, n))
         else:
-            parts[case] = (abs(r["frequency_hz"] - f_exp) / f_exp if r.get("direction") == "forward" else 1.0)
+            parts[case] = ((abs(r["frequency_hz"] - f_exp) / f_exp, None) if r.get("direction") == "forward"
+                           else (1.0, None))
+    ens = "n" in res.get("fw7000", {})  # ensemble_stats' results carry their size
     r = res.get("fw7000", {})
     if force and "fw7000" in cases and r.get("force_max_n"):
-        parts["force"] = min(1.0, abs(r["force_max_n"] / paper()["table2"]["experimental"]["v_force_max_n"] - 1) / 2)
+        f_exp = paper()["table2"]["experimental"]["v_force_max_n"]
+        v = abs(r["force_max_n"] / f_exp - 1) / 2
+        se = (r.get("v_force_range_se_n") or [0.0, 0.0])[1] / f_exp / 2 if ens else None
+        parts["force"] = (1.0, 0.0) if v >= 1.0 else (v, se)
     b = res.get("bw", {})
     t1 = paper()["table1"]["experimental"]
+    ens = "n" in b
     if "bw" in cases and b.get("direction") == "backward":
-        parts["bw_freq"] = abs(b["frequency_hz"] - t1["frequency_hz"]) / t1["frequency_hz"]
-        parts["bw_onset"] = min(1.0, abs(b["onset_s"] - t1["onset_s"]) / t1["onset_s"])
-        parts["bw_persist"] = 1.0 - min(1.0, max(0.0, b.get("persistence", 1.0)))
+        parts["bw_freq"] = (abs(b["frequency_hz"] - t1["frequency_hz"]) / t1["frequency_hz"],
+                            (b.get("frequency_se_hz") or 0.0) / t1["frequency_hz"] if ens else None)
+        v = abs(b["onset_s"] - t1["onset_s"]) / t1["onset_s"]
+        parts["bw_onset"] = (1.0, 0.0) if v >= 1.0 else (v, (b.get("onset_se_s") or 0.0) / t1["onset_s"]
+                                                         if ens else None)
+        parts["bw_persist"] = (1.0 - min(1.0, max(0.0, b.get("persistence", 1.0))),
+                               b.get("persistence_se", 0.0) if ens else None)
     elif "bw" in cases:
-        parts["bw_freq"] = parts["bw_onset"] = parts["bw_persist"] = 1.0
+        parts["bw_freq"] = parts["bw_onset"] = parts["bw_persist"] = (1.0, 0.0)
     if "bw015" in cases:  # the same bearing at mu_rad 0.15 must land calm: score its whirling share
         r = res.get("bw015", {})
         counts = r.get("counts") or {r.get("direction", "failed"): 1}
-        parts["bw015_whirls"] = 1.0 - counts.get("none", 0) / sum(counts.values())
-    return float(sum(parts.values())), parts
+        n, k = sum(counts.values()), counts.get("none", 0)
+        parts["bw015_whirls"] = (1.0 - k / n, share_se(k, n) if "n" in r else None)
+    return parts
+
+
+def noise_span(rows: list[dict], keys: list[str]) -> dict:
+    """Per searched key, [min, max] over the designs ``within_noise_of_best``: the fit's own
+    uncertainty in that unknown, as far as the sampled designs show it ({} when no design has an
+    error to judge by)."""
+    near = [r for r in rows if r.get("within_noise_of_best")]
+    return {k: [min(r[k] for r in near), max(r[k] for r in near)] for k in keys} if near else {}
+
+
+#: how many standard errors of a score difference make two designs distinguishable: 2, about 95 %
+#: two-sided for a normal difference (the conventional significance of a single comparison)
+NOISE_Z = 2.0
+
+
+def within_noise(rows: list[dict], z: float = NOISE_Z) -> list[dict]:
+    """The designs that the search cannot tell from the best (``rows[0]``): a score above the best's
+    by less than ``z`` standard errors of the difference, hypot(se, se_best). Designs with a failed
+    landing or without an error (single landings) are left out; so is every design when the best has
+    no error. This set, not its first member, is what a Monte Carlo fit on ensembles of chaotic
+    drops determines: which of its members ranks first moves with the last bits of the arithmetic
+    (docs/calibration.md, session 24)."""
+    best = rows[0]
+    if best.get("score_se") is None or best.get("failed_landings"):
+        return []
+    lim = best["score"]
+    return [r for r in rows if r.get("score_se") is not None and not r.get("failed_landings")
+            and r["score"] - lim <= z * math.hypot(r["score_se"], best["score_se"])]
 
 
 def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
@@ -257,7 +322,8 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     rows = []
     for i, d in enumerate(sp["designs"]):
         total, parts = score(results[i], cases, force=sp["score_force"])
-        rows.append({"design": i, "score": total, "converged": None, "score_half_step": None,
+        rows.append({"design": i, "score": total, "score_se": score_se(results[i], cases, force=sp["score_force"]),
+                     "within_noise_of_best": None, "converged": None, "score_half_step": None,
                      "failed_landings": sum(results[i][c].get("failed", 0) for c in cases), **d,
                      **{f"err_{k}": v for k, v in parts.items()},
                      **{f"{c}_direction": results[i][c].get("direction") for c in cases},
@@ -291,6 +357,9 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     # worse of the two steps
     rank = {True: 0, None: 1, False: 2}
     rows.sort(key=lambda r: (rank[r["converged"]], max(r["score"], r["score_half_step"] or 0.0)))
+    noise = within_noise(rows)
+    for r in rows:
+        r["within_noise_of_best"] = (r in noise) if noise else None
     keys = []
     for r in rows:
         keys += [k for k in r if k not in keys]
@@ -301,6 +370,7 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     w.writeheader()
     w.writerows(rows)
     atomic_write_text(out / "calibration.csv", buf.getvalue())
-    atomic_write_text(out / "calibration.json", json.dumps({"space": str(space_path), "designs": rows}, indent=2,
-                                                           default=float))
+    atomic_write_text(out / "calibration.json", json.dumps(
+        {"space": str(space_path), "noise_z": NOISE_Z, "within_noise_span": noise_span(rows, list(sp["designs"][0])),
+         "designs": rows}, indent=2, default=float))
     return rows

@@ -74,7 +74,8 @@ def ensemble_stats(members: list[dict]) -> dict:
     ``onset_se_s`` the same for the onsets, and ``onset_range_s`` their [min, max] (a developing
     worn drag makes the onset a random variable of the drop: docs/calibration.md, session 7).
     ``v_disp_range_se_m`` / ``v_force_range_se_n``: standard errors of the median peaks;
-    ``race_to_rotor_se`` that of the median speed ratio.
+    ``race_to_rotor_se`` that of the median speed ratio; ``end_se_s`` and ``persistence_se`` those of
+    the whirl's median end and persistence.
     ``de``: the DE journal's own whirl over all members (members with ``de_direction``): its class
     counts, majority class and median frequency with its standard error; the paper measured its
     whirl frequencies there, while the landing's whirl may be another bearing's.
@@ -108,6 +109,8 @@ def ensemble_stats(members: list[dict]) -> dict:
         vals = [m[key] for m in same if m.get(key) is not None]
         if vals and whirl:
             out[key] = median(vals)
+            if len(vals) >= 2:
+                out[key.removesuffix("_s") + "_se" + ("_s" if key.endswith("_s") else "")] = _median_se(vals)
     ratios = [m["race_to_rotor"] for m in members if m.get("race_to_rotor") is not None]
     if ratios:
         out["race_to_rotor"] = median(ratios)
@@ -185,6 +188,14 @@ def bootstrap_median_se(vals, resamples: int = 4000, seed: int = 0) -> float:
     rng = np.random.default_rng(seed)
     meds = np.median(rng.choice(x, size=(resamples, len(x)), replace=True), axis=1)
     return float(np.std(meds, ddof=1))
+
+
+def share_se(k: int, n: int) -> float:
+    """Standard error of a share k / n of drops: binomial, sqrt(p (1 - p) / n), with p kept half a
+    drop away from 0 and 1 (an ensemble of 8 / 8 is not certain: the same rule as validate's class
+    checks, there in drops)."""
+    p = min(max(k / n, 0.5 / n), 1 - 0.5 / n)
+    return math.sqrt(p * (1 - p) / n)
 
 
 def _median_se(vals) -> float:

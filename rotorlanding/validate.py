@@ -23,7 +23,7 @@ import platform
 import time
 from pathlib import Path
 
-from .ensemble import LOCK_GAP_HZ, drop_offsets, ensemble_stats, member_result
+from .ensemble import LOCK_GAP_HZ, drop_offsets, ensemble_stats, member_result, share_se
 from .errors import InputError
 from .runner import run_all, warm_model
 from .safeio import WriteError, atomic_write_text, save_figure
@@ -376,9 +376,8 @@ def _class_verdict(counts: dict, n: int, want, share: float = CLASS_SHARE) -> di
     want = {want} if isinstance(want, str) else set(want)
     k = sum(v for c, v in counts.items() if c in want)
     need = math.ceil(share * n - 1e-9)
-    p = min(max(k / n, 0.5 / n), 1 - 0.5 / n)
     return {"pass": k >= need, "ours": f"{k} of {n}", "margin": k - need,
-            "se": math.sqrt(n * p * (1 - p)), "margin_unit": "drops"}
+            "se": n * share_se(k, n), "margin_unit": "drops"}
 
 
 def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | None = None) -> dict:
@@ -746,7 +745,7 @@ def report_markdown(result: dict) -> str:
              counts_line(ev), "",
              *([f"Rig rotor: `{_shown(result['rig_overlay'])}` merged over every paper scenario (`--rig`).", ""]
                if result.get("rig_overlay") else []),
-             *([f"Overrides applied to every landing (`--set`): " + ", ".join(f"`{x}`" for x in result["overrides"])
+             *(["Overrides applied to every landing (`--set`): " + ", ".join(f"`{x}`" for x in result["overrides"])
                 + ".", ""] if result.get("overrides") else []),
              *([f"Run time: {result['run']['wall_s']} s wall for {result['run'].get('landings', len(s))} landings on "
                 f"{result['run']['workers']} "

@@ -175,16 +175,72 @@ def test_forward_ensembles_are_judged_at_the_de_journal():
     assert score({"fw3000": calm_de}, ["fw3000"])[1] == {"fw3000": 1.0, "fw3000_de": pytest.approx(0.625)}
 
 
+def test_score_error_adds_the_parts_errors_and_a_share_has_the_binomial_error():
+    """score_se: the frequency median's error over the experiment and the share's binomial error,
+    in quadrature; the binomial rule checked against a Monte Carlo draw of 8-drop ensembles."""
+    import numpy as np
+
+    from rotorlanding.calibrate import score_parts, score_se
+    from rotorlanding.ensemble import share_se
+
+    ens = {"n": 8, "direction": "forward", "frequency_hz": 46.0,
+           "de": {"counts": {"forward": 6, "none": 2}, "direction": "forward", "frequency_hz": 43.2,
+                  "frequency_se_hz": 0.96}}
+    parts = score_parts({"fw3000": ens}, ["fw3000"])
+    assert parts["fw3000"] == (pytest.approx(0.1), pytest.approx(0.96 / 48.0))
+    assert parts["fw3000_de"] == (pytest.approx(0.25), pytest.approx((0.25 * 0.75 / 8) ** 0.5))
+    assert score_se({"fw3000": ens}, ["fw3000"]) == pytest.approx(((0.02) ** 2 + 0.25 * 0.75 / 8) ** 0.5)
+    k = np.random.default_rng(3).binomial(8, 0.25, size=200_000)
+    assert np.std(k / 8) == pytest.approx(share_se(2, 8), rel=0.01)
+    # 8 of 8 is not certain: p kept half a drop from 1 (validate's class-check rule)
+    assert share_se(8, 8) == pytest.approx((0.0625 * 0.9375 / 8) ** 0.5)
+    # a single landing is one draw: no error to give, and no design can be judged within noise
+    assert score_se({"fw3000": {"direction": "forward", "frequency_hz": 47.0}}, ["fw3000"]) is None
+
+
+def test_designs_within_noise_of_the_best_and_their_span():
+    """A design is indistinguishable from the best when its score is above the best's by no more
+    than NOISE_Z standard errors of the difference; failed or error-less designs are never in."""
+    from rotorlanding.calibrate import NOISE_Z, noise_span, within_noise
+
+    rows = [{"design": 8, "score": 0.067, "score_se": 0.15, "failed_landings": 0, "x": 0.0407},
+            {"design": 18, "score": 0.231, "score_se": 0.17, "failed_landings": 0, "x": 0.0398},
+            {"design": 3, "score": 0.067 + NOISE_Z * 0.25 + 0.01, "score_se": 0.2, "failed_landings": 0, "x": 0.045},
+            {"design": 5, "score": 0.1, "score_se": 0.1, "failed_landings": 1, "x": 0.038},
+            {"design": 6, "score": 0.1, "score_se": None, "failed_landings": 0, "x": 0.038}]
+    near = within_noise(rows)
+    assert [r["design"] for r in near] == [8, 18]  # 3: 0.01 beyond 2 x hypot(0.15, 0.2) = 0.5
+    for r in rows:
+        r["within_noise_of_best"] = r in near
+    assert noise_span(rows, ["x"]) == {"x": [0.0398, 0.0407]}
+    assert within_noise([dict(rows[0], score_se=None)] + rows[1:]) == []
+
+
+def test_ensemble_gives_the_persistence_error():
+    from rotorlanding.ensemble import _median_se, ensemble_stats
+
+    members = [{"direction": "backward", "frequency_hz": 48.0 + k, "onset_s": 0.1 * k, "persistence": p}
+               for k, p in enumerate([0.9, 0.95, 1.0, 0.85])]
+    st = ensemble_stats(members)
+    assert st["persistence"] == pytest.approx(0.925)
+    assert st["persistence_se"] == pytest.approx(_median_se([0.9, 0.95, 1.0, 0.85]))
+
+
 @pytest.mark.slow
-def test_rig_landing_fit_reruns_and_reproduces_the_rotor_file(tmp_path):
-    """The rig rotor's main shaft and actuator disk are the best design of
-    scenarios/calibration/rotor_landings.toml (session 15): re-running it gives the rotor file's
-    values (576 landings, ~5 min on 2 cores)."""
+def test_rig_landing_fit_reruns_and_keeps_the_rotor_file_within_its_noise(tmp_path):
+    """The rig rotor's main shaft and actuator disk are design 18 of
+    scenarios/calibration/rotor_landings.toml (session 15). Re-run (576 landings, ~5 min on 2
+    cores), that design is among those the fit cannot tell from its best. Which of them ranks first
+    moves with the install's arithmetic (session 24: design 8, 40.73 / 420.9 mm, on numpy 2.4.6), so
+    the fit's claim, and this test's, is the set and its span (docs/calibration.md, session 25)."""
     from rotorlanding.calibrate import calibrate
     from rotorlanding.config import load_toml
 
     root = Path(__file__).resolve().parents[1]
     rows = calibrate(root / "scenarios" / "calibration" / "rotor_landings.toml", tmp_path, workers=2)
     rotor = load_toml(root / "scenarios" / "rig_rotor.toml")["rotor"]
-    assert rows[0]["rotor.sections.3.outer_diameter"] == rotor["sections"][3]["outer_diameter"]
-    assert rows[0]["rotor.disks.4.outer_diameter"] == rotor["disks"][4]["outer_diameter"]
+    adopted = (rotor["sections"][3]["outer_diameter"], rotor["disks"][4]["outer_diameter"])
+    near = [(r["rotor.sections.3.outer_diameter"], r["rotor.disks.4.outer_diameter"])
+            for r in rows if r["within_noise_of_best"]]
+    assert adopted in near
+    assert len(near) < len(rows)  # the fit does tell designs apart: not every design is "within noise"
