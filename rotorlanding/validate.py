@@ -914,9 +914,10 @@ def report_markdown(result: dict) -> str:
               "amplifies them: a single drop's class, onset and peaks are then only statistically repeatable. That "
               "is why every number above is an ensemble median with its standard error and every class a share of "
               "drops; a verdict whose margin is smaller than its standard error is marked \"within noise\" (it may "
-              "flip on another machine), never passed or failed silently. A fresh install takes the newest numpy and "
-              "scipy the project allows, and their bundled BLAS is such a change: the package versions of this run "
-              "are in the run-time line at the top.",
+              "flip on another machine), never passed or failed silently. Another numpy or scipy, with its bundled "
+              "BLAS, is such a change: the package versions of this run are in the run-time line at the top, and "
+              "the README's install (`-c constraints.txt`) gives a fresh machine the versions this report was "
+              "published with; without it pip takes the newest the project allows.",
               "", "## Figures", ""]
     lines += figure_lines(result)
     return "\n".join(lines) + "\n"
