@@ -322,10 +322,19 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     rows = []
     for i, d in enumerate(sp["designs"]):
         total, parts = score(results[i], cases, force=sp["score_force"])
+        part_se = {k: se for k, (_, se) in score_parts(results[i], cases, force=sp["score_force"]).items()}
+        de = {c: results[i][c].get("de") or {} for c in cases}
         rows.append({"design": i, "score": total, "score_se": score_se(results[i], cases, force=sp["score_force"]),
                      "within_noise_of_best": None, "converged": None, "score_half_step": None,
                      "failed_landings": sum(results[i][c].get("failed", 0) for c in cases), **d,
                      **{f"err_{k}": v for k, v in parts.items()},
+                     # each part's error, so that a study can score a subset of the cases with its noise
+                     # (the held-out fits score two of the three speeds of the same designs)
+                     **{f"err_{k}_se": v for k, v in part_se.items()},
+                     # the DE journal's own whirl per case (what validate and the score judge)
+                     **{f"{c}_de_{key}": de[c].get(name) for c in cases if de[c]
+                        for key, name in (("direction", "direction"), ("hz", "frequency_hz"))},
+                     **{f"{c}_de_forward": de[c]["counts"].get("forward", 0) for c in cases if de[c]},
                      **{f"{c}_direction": results[i][c].get("direction") for c in cases},
                      **{f"{c}_hz": results[i][c].get("frequency_hz") for c in cases},
                      **({"bw_onset_s": results[i]["bw"].get("onset_s"),

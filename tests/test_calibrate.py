@@ -244,3 +244,31 @@ def test_rig_landing_fit_reruns_and_keeps_the_rotor_file_within_its_noise(tmp_pa
             for r in rows if r["within_noise_of_best"]]
     assert adopted in near
     assert len(near) < len(rows)  # the fit does tell designs apart: not every design is "within noise"
+
+
+def test_heldout_span_scores_the_two_fitted_speeds_and_judges_each_design_in_the_noise():
+    """docs/studies/heldout_span.py: the fit without one speed is the full fit's parts of the other
+    two (same designs), its noise set is judged by validate's held-out rule at the third."""
+    import importlib.util
+
+    path = Path(__file__).resolve().parents[1] / "docs" / "studies" / "heldout_span.py"
+    spec = importlib.util.spec_from_file_location("heldout_span", path)
+    hs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(hs)
+
+    def row(i, e3, e7, e10, hz3, fwd3):
+        r = {"design": i, hs.KEYS[0]: 0.04, hs.KEYS[1]: 0.42, "fw3000_de_hz": hz3, "fw3000_de_forward": fwd3,
+             "fw3000_de_direction": "forward"}
+        for c, e in (("fw3000", e3), ("fw7000", e7), ("fw10000", e10)):
+            r.update({f"err_{c}": e, f"err_{c}_se": 0.01, f"err_{c}_de": 0.0, f"err_{c}_de_se": 0.03})
+        return r
+
+    rows = [row(0, 0.5, 0.01, 0.01, 40.0, 8),   # best without 3000 rpm, predicts 40 Hz (-16.7 %): fails
+            row(1, 0.0, 0.02, 0.02, 47.0, 8),   # within noise of it (0.02 apart), predicts 47 Hz: passes
+            row(2, 0.0, 0.02, 0.02, 47.0, 6),   # same, but its DE whirls forward in 6 of 8: fails
+            row(3, 0.0, 0.5, 0.5, 48.0, 8)]     # far off on the fitted speeds: not in the set
+    assert hs.sub_score(rows[0], ["fw7000", "fw10000"]) == (pytest.approx(0.02), pytest.approx(0.002 ** 0.5))
+    h = hs.heldout(rows, 3000, 8)
+    assert h["first"] == 0 and [p["design"] for p in h["within_noise"]] == [0, 1, 2]
+    assert [p["pass"] for p in h["within_noise"]] == [False, True, False] and h["passing"] == 1
+    assert h["within_noise"][0]["error"] == pytest.approx(40.0 / 48.0 - 1)
