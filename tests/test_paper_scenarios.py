@@ -255,6 +255,34 @@ def test_heldout_verdict_is_flagged_when_its_share_of_drops_hangs_on_noise():
     assert not c["pass"] and c["class_margin"] == -1
 
 
+def test_heldout_verdict_says_when_it_hangs_on_the_fits_pick(tmp_path, monkeypatch):
+    """A held-out prediction judged over every design its fit cannot tell from its best
+    (docs/studies/heldout_span): a pass that some of those designs reverse is marked as hanging on
+    the fit's pick, a pass they all share is not; the count line says how many hold."""
+    import json
+
+    import rotorlanding.validate as v
+
+    (tmp_path / "docs" / "studies" / "heldout_span").mkdir(parents=True)
+    span = {"heldout": [{"rpm": 10000, "first": 8, "passing": 8, "within_noise": [
+        {"error": -0.04, "pass": True}] * 8 + [{"error": None, "pass": False}] * 9}]}
+    (tmp_path / "docs" / "studies" / "heldout_span" / "heldout_span.json").write_text(json.dumps(span))
+    monkeypatch.setattr(v, "project_root", lambda: tmp_path)
+    monkeypatch.setattr(v, "_heldout_first", lambda rpm: 8)
+    s = {k: None for k in v.CASES}
+    ev = v.evaluate_cases(s, _paper_ensembles(heldout_10000=[_member("forward", 77.0 + 0.1 * k, 0.1) for k in range(16)]))
+    c = next(c for c in ev["checks"] if c["group"] == "held-out")
+    assert c["pass"] and c["robust"]["passing"] == 8 and c["robust"]["n"] == 17 and not c["robust"]["holds"]
+    assert "hangs on the fit's pick: 8 of 17" in v._verdict(c)
+    assert "(0 of them holding over every design" in v.counts_line(ev)
+    span["heldout"][0]["within_noise"] = [{"error": -0.04, "pass": True}] * 8
+    (tmp_path / "docs" / "studies" / "heldout_span" / "heldout_span.json").write_text(json.dumps(span))
+    ev = v.evaluate_cases(s, _paper_ensembles(heldout_10000=[_member("forward", 77.0 + 0.1 * k, 0.1) for k in range(16)]))
+    c = next(c for c in ev["checks"] if c["group"] == "held-out")
+    assert c["robust"]["holds"] and v._verdict(c) == "PASS"
+    assert "(1 of them holding over every design" in v.counts_line(ev)
+
+
 def test_class_verdict_counts_drops_with_a_binomial_error():
     from rotorlanding.validate import _class_verdict
 

@@ -112,7 +112,7 @@ def main(argv=None) -> int:
         src = Path(a.source)
         rows = json.loads(src.read_text())["designs"]
     else:
-        rows = calibrate(space, out / "fit", workers=a.workers)
+        rows = calibrate(space.relative_to(ROOT) if Path.cwd() == ROOT else space, out / "fit", workers=a.workers)
         src = out / "fit" / "calibration.json"
     if not rows or "err_fw3000_se" not in rows[0]:
         print(f"{src}: no per-part errors (err_<part>_se); re-run calibrate (session 25 or later)", file=sys.stderr)
@@ -121,9 +121,10 @@ def main(argv=None) -> int:
 
     drops = load_space(space)["ensemble"]
     res = [heldout(rows, rpm, drops) for rpm in SPEEDS]
-    atomic_write_text(out / "heldout_span.json", json.dumps({"source": str(src), "drops": drops, "heldout": res},
+    shown = src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src
+    atomic_write_text(out / "heldout_span.json", json.dumps({"source": str(shown), "drops": drops, "heldout": res},
                                                             indent=2, default=float))
-    text = report(res, drops, src.relative_to(ROOT) if src.is_relative_to(ROOT) else src)
+    text = report(res, drops, shown)
     atomic_write_text(out / "heldout_span.md", text)
     print(text)
     return 0
