@@ -548,6 +548,23 @@ def calibrated_keys() -> dict[str, tuple[str, dict]]:
     return out
 
 
+#: calibration file -> a stored run of it with the scores' errors (calibrate since session 25), whose
+#: ``within_noise_span`` the rig table shows: what the fit determines, beside the value adopted
+STORED_FITS = {"scenarios/calibration/rotor_landings.toml": "docs/studies/heldout_span/fit/calibration.json"}
+
+
+def fit_span(cal: str, key: str) -> list[float] | None:
+    """[min, max] of ``key`` over the designs a stored run of calibration ``cal`` cannot tell from
+    its best (``STORED_FITS``; None without one, or when the run is of another space file)."""
+    f = project_root() / STORED_FITS[cal] if cal in STORED_FITS else None
+    if f is None or not f.is_file():
+        return None
+    d = json.loads(f.read_text())
+    if Path(d.get("space", "")).as_posix() != cal:
+        return None
+    return (d.get("within_noise_span") or {}).get(key)
+
+
 def rig_checks(rig=None) -> list[dict]:
     """Every calibrated parameter inside its sourced physical bound (``[bounds]`` of the rig files
     and scenarios) and not on it (within ``ON_BOUND`` of the width from an end); read from the
@@ -581,6 +598,10 @@ def rig_checks(rig=None) -> list[dict]:
                                               f"{' (log)' if b.log else ''}, {spos:.0%} of the search range "
                                               f"[{search.min:.4g}, {search.max:.4g}]"
                                               + ("" if inside else " (search range outside the bound)"))
+        span = fit_span(cal, key)
+        if span and b is not None:  # the fit's own uncertainty: the designs it cannot rank against its best
+            where += (f"; the fit determines [{span[0]:.4g}, {span[1]:.4g}] (designs within its noise, "
+                      f"{STORED_FITS[cal]})")
         checks.append({"group": "rig", "check": f"{key} inside its physical bound", "pass": inside and margin >= 0,
                        "rule": f"fitted by {cal}; inside its sourced bound and its search range, >= {ON_BOUND:.0%} "
                                "of their widths from either end",
