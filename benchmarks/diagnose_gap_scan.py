@@ -27,6 +27,22 @@ def local_minima(g: list[float]) -> int:
     return sum(1 for i in range(1, len(g) - 1) if g[i] < g[i - 1] and g[i] < g[i + 1])
 
 
+def significant_minima(g: list[float], se: list[float], z: float = 2.0) -> int:
+    """Interior local minima whose well is deeper, on both sides, than ``z`` standard errors of
+    the difference of the two gaps (hypot of their errors): a ripple inside the gaps' own noise is
+    no second basin (session 25: 1.35 / 1.37 beside 1.70, an ensemble's 0.02 ripple)."""
+    return sum(1 for i in range(1, len(g) - 1)
+               if all(g[j] - g[i] > z * (se[i] ** 2 + se[j] ** 2) ** 0.5 for j in (i - 1, i + 1)))
+
+
+def jackknife_se(full: float, leave_one_out: list[float]) -> float:
+    """Jackknife standard error of a statistic from its n leave-one-out values (Efron & Tibshirani,
+    An Introduction to the Bootstrap, ch. 11): sqrt((n - 1) / n sum (g_i - mean g)^2)."""
+    n = len(leave_one_out)
+    m = sum(leave_one_out) / n
+    return ((n - 1) / n * sum((x - m) ** 2 for x in leave_one_out)) ** 0.5
+
+
 def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22, t_end: float = 0.3,
          records: int = 1) -> dict:
     """``records`` > 1: the "measurement" is that many records of repeated landings, each dropped
@@ -36,8 +52,8 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
     from sensor_model import C, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis
-    from rotorlanding.ensemble import random_drop_offset
-    from rotorlanding.features import ensemble_features
+    from rotorlanding.ensemble import drop_offsets, random_drop_offset
+    from rotorlanding.features import ensemble_features, gap_points
 
     with tempfile.TemporaryDirectory() as tmp:
         model = known_rig_model(Path(tmp) / "model.toml", ["windage"], t_end=t_end)
@@ -52,13 +68,25 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
                 feats.append(measured_for_diagnosis(model, Path(tmp) / f"rig{k}.csv", [], None)[2])
             meas = ensemble_features(feats)
         out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m, "records": records}
-        for label, n in (("single", 1), ("ensemble", ensemble)):
-            sim = _Simulator(model, [Point("", [], meas)], C, workers, [], ensemble=n, ensemble_radius_m=radius_m)
-            try:
-                out[label] = [r[0] for r in sim.gaps([[f"contact.mu_rad={mu!r}"] for mu in mus])]
-            finally:
-                sim.close()
+        sim = _Simulator(model, [Point("", [], meas)], C, workers, [])
+        try:
+            out["single"] = [r[0] for r in sim.gaps([[f"contact.mu_rad={mu!r}"] for mu in mus])]
+            # the ensemble's drops landed one by one (the same drop points as diagnose --ensemble), so
+            # that each ensemble gap also gets its jackknife error over the drops
+            offs = drop_offsets(ensemble, radius_m)
+            drops = sim.features([[f"contact.mu_rad={mu!r}"] + o for mu in mus for o in offs])
+        finally:
+            sim.close()
+        out["ensemble"], out["ensemble_se"] = [], []
+        for i in range(len(mus)):
+            d = [x[0] for x in drops[i * ensemble:(i + 1) * ensemble]]
+            gap = gap_points([meas], [ensemble_features(d)])[0]
+            loo = [gap_points([meas], [ensemble_features(d[:k] + d[k + 1:])])[0] for k in range(ensemble)]
+            out["ensemble"].append(gap)
+            out["ensemble_se"].append(jackknife_se(gap, loo))
+        for label in ("single", "ensemble"):
             out[label + "_local_minima"] = local_minima(out[label])
+        out["ensemble_significant_minima"] = significant_minima(out["ensemble"], out["ensemble_se"])
     return out
 
 
@@ -75,6 +103,8 @@ def main(argv=None) -> int:
     res = scan([float(x) for x in a.mu.split(",")], a.ensemble, a.radius_m, a.workers, records=a.records)
     for label in ("single", "ensemble"):
         print(f"{label:8s}: " + " ".join(f"{g:.2f}" for g in res[label]) + f"  (local minima {res[label + '_local_minima']})")
+    print("  s.e.  : " + " ".join(f"{g:.2f}" for g in res["ensemble_se"])
+          + f"  (ensemble minima beyond 2 s.e. of the difference: {res['ensemble_significant_minima']})")
     if a.out:
         from rotorlanding.safeio import atomic_write_text
 
