@@ -35,7 +35,18 @@ def significant_minima(g: list[float], se: list[float], z: float = 2.0) -> int:
                if all(g[j] - g[i] > z * (se[i] ** 2 + se[j] ** 2) ** 0.5 for j in (i - 1, i + 1)))
 
 
-def jackknife_se(full: float, leave_one_out: list[float]) -> float:
+def one_basin(g: list[float], se: list[float], z: float = 2.0) -> bool:
+    """Whether the scan falls to its lowest point and rises after it, every step against that
+    direction smaller than ``z`` standard errors of the difference of its two gaps (a ripple
+    within the noise is allowed, a second well beyond it is not; with errors 0 any rise before
+    the minimum, or fall after it, breaks the basin)."""
+    k = min(range(len(g)), key=g.__getitem__)
+    tol = [z * (se[i] ** 2 + se[i + 1] ** 2) ** 0.5 for i in range(len(g) - 1)]
+    return (all(g[i + 1] - g[i] <= tol[i] for i in range(k))
+            and all(g[i] - g[i + 1] <= tol[i] for i in range(k, len(g) - 1)))
+
+
+def jackknife_se(leave_one_out: list[float]) -> float:
     """Jackknife standard error of a statistic from its n leave-one-out values (Efron & Tibshirani,
     An Introduction to the Bootstrap, ch. 11): sqrt((n - 1) / n sum (g_i - mean g)^2)."""
     n = len(leave_one_out)
@@ -80,13 +91,19 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
         out["ensemble"], out["ensemble_se"] = [], []
         for i in range(len(mus)):
             d = [x[0] for x in drops[i * ensemble:(i + 1) * ensemble]]
+            if any("__error__" in x for x in d):  # a landing that failed: no gap (as diagnose's)
+                out["ensemble"].append(float("inf"))
+                out["ensemble_se"].append(float("inf"))
+                continue
             gap = gap_points([meas], [ensemble_features(d)])[0]
             loo = [gap_points([meas], [ensemble_features(d[:k] + d[k + 1:])])[0] for k in range(ensemble)]
             out["ensemble"].append(gap)
-            out["ensemble_se"].append(jackknife_se(gap, loo))
+            out["ensemble_se"].append(jackknife_se(loo))
         for label in ("single", "ensemble"):
             out[label + "_local_minima"] = local_minima(out[label])
         out["ensemble_significant_minima"] = significant_minima(out["ensemble"], out["ensemble_se"])
+        out["ensemble_one_basin"] = one_basin(out["ensemble"], out["ensemble_se"])
+        out["single_one_basin"] = one_basin(out["single"], [0.0] * len(mus))
     return out
 
 

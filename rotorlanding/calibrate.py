@@ -243,13 +243,18 @@ def within_noise(rows: list[dict], z: float = NOISE_Z) -> list[dict]:
     landing or without an error (single landings) are left out; so is every design when the best has
     no error. This set, not its first member, is what a Monte Carlo fit on ensembles of chaotic
     drops determines: which of its members ranks first moves with the last bits of the arithmetic
-    (docs/calibration.md, session 24)."""
+    (docs/calibration.md, session 24). A design checked at half the step counts with the worse of
+    its two scores (as ``calibrate`` ranks it); one that did not converge there is left out."""
+    def ranked(r):
+        return max(r["score"], r.get("score_half_step") or r["score"])
+
     best = rows[0]
-    if best.get("score_se") is None or best.get("failed_landings"):
+    if best.get("score_se") is None or best.get("failed_landings") or best.get("converged") is False:
         return []
-    lim = best["score"]
+    lim = ranked(best)
     return [r for r in rows if r.get("score_se") is not None and not r.get("failed_landings")
-            and r["score"] - lim <= z * math.hypot(r["score_se"], best["score_se"])]
+            and r.get("converged") is not False
+            and ranked(r) - lim <= z * math.hypot(r["score_se"], best["score_se"])]
 
 
 def _jobs(designs: dict, sp: dict, step_factor: float) -> list[tuple]:
@@ -335,6 +340,7 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
                      **{f"{c}_de_{key}": de[c].get(name) for c in cases if de[c]
                         for key, name in (("direction", "direction"), ("hz", "frequency_hz"))},
                      **{f"{c}_de_forward": de[c]["counts"].get("forward", 0) for c in cases if de[c]},
+                     **{f"{c}_failed": results[i][c].get("failed", 0) for c in cases},
                      **{f"{c}_direction": results[i][c].get("direction") for c in cases},
                      **{f"{c}_hz": results[i][c].get("frequency_hz") for c in cases},
                      **({"bw_onset_s": results[i]["bw"].get("onset_s"),

@@ -512,7 +512,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
         # the fit cannot rank the designs within its noise: a verdict that some of them would reverse
         # hangs on which one it put first (and that moves with the install)
         sp = span.get(rpm)
-        robust = None if not sp else {**sp, "same_fit": sp["first"] == _heldout_first(rpm),
+        robust = None if not sp or not sp["n"] else {**sp, "same_fit": sp["first"] == _heldout_first(rpm),
                                       "holds": sp["passing"] == sp["n"] if ok else sp["passing"] == 0}
         check("held-out", f"held-out {rpm} rpm: rotor fitted on the other two speeds",
               f"DE forward in >= {CLASS_SHARE:.3g} of the drops and within 10 % of {exp:g} Hz",
@@ -560,7 +560,10 @@ def fit_span(cal: str, key: str) -> list[float] | None:
     if f is None or not f.is_file():
         return None
     d = json.loads(f.read_text())
-    if Path(d.get("space", "")).as_posix() != cal:
+    space = Path(d.get("space", ""))
+    if space.is_absolute() and space.is_relative_to(project_root()):  # a run given an absolute path
+        space = space.relative_to(project_root())
+    if space.as_posix() != cal:
         return None
     return (d.get("within_noise_span") or {}).get(key)
 

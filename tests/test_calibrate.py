@@ -214,6 +214,10 @@ def test_designs_within_noise_of_the_best_and_their_span():
         r["within_noise_of_best"] = r in near
     assert noise_span(rows, ["x"]) == {"x": [0.0398, 0.0407]}
     assert within_noise([dict(rows[0], score_se=None)] + rows[1:]) == []
+    # checked at half the step: the worse of the two scores counts, an unconverged design never
+    half = [dict(rows[0], converged=True), dict(rows[1], converged=None),
+            dict(rows[1], design=19, converged=False), dict(rows[1], design=20, score_half_step=0.9)]
+    assert [r["design"] for r in within_noise(half)] == [8, 18]
 
 
 def test_ensemble_gives_the_persistence_error():

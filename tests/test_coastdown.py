@@ -268,7 +268,7 @@ def test_stored_case_can_be_rerun(uninterrupted):
 @pytest.mark.slow
 def test_peak_memory_stays_bounded_over_a_long_run(tmp_path):
     """20 s of coast-down (20 chunks of the scenario's 1 s) in a fresh process: peak RSS < 1 GB,
-    and the per-chunk buffer is at most one chunk at the landing's output period, as for a 1-chunk
+    and the largest per-chunk buffer is one chunk at the landing's output period, as for a 1-chunk
     run (the smooth chunks after ``landing_s`` hold fewer samples). The counts are read from the
     scenario: the test asserted 100 chunks of 0.2 s until session 25, stale since the scenario's
     chunk_s became 1 s (d0d94ad)."""

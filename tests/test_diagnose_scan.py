@@ -23,8 +23,8 @@ def test_ensemble_gap_is_one_basin_where_one_drop_is_a_needle():
     from diagnose_gap_scan import scan
 
     res = scan([0.05, 0.1, 0.15, 0.2, 0.22, 0.25, 0.3, 0.4, 0.5], 8, 3e-5, 2)
-    assert res["single_local_minima"] >= 2
-    assert res["ensemble_significant_minima"] <= 1
+    assert res["single_local_minima"] >= 2 and not res["single_one_basin"]
+    assert res["ensemble_significant_minima"] <= 1 and res["ensemble_one_basin"]
     # the deepest well (its shallower side) of the ensemble scan is far shallower than the needle
 
     def deepest_well(g):
@@ -38,7 +38,7 @@ def test_a_minimum_counts_only_beyond_the_noise_of_its_well():
     (for the mean the jackknife gives exactly the standard error s / sqrt(n))."""
     import numpy as np
 
-    from diagnose_gap_scan import jackknife_se, local_minima, significant_minima
+    from diagnose_gap_scan import jackknife_se, local_minima, one_basin, significant_minima
 
     g = [1.98, 1.87, 1.70, 1.35, 1.37, 1.22, 0.93, 1.92, 2.32]
     se = [0.06, 0.08, 0.09, 0.08, 0.05, 0.13, 0.15, 0.20, 0.02]
@@ -46,6 +46,7 @@ def test_a_minimum_counts_only_beyond_the_noise_of_its_well():
     assert significant_minima(g, [0.01] * 9) == 1          # with small errors the 0.29-deep well at 0.3 counts
     needle = [2.0, 1.9, 1.8, 0.1, 1.7, 1.6, 0.2, 1.8, 2.0]
     assert significant_minima(needle, [0.1] * 9) == 2
+    assert one_basin(g, se) and not one_basin(g, [0.0] * 9) and not one_basin(needle, [0.1] * 9)
     x = np.random.default_rng(5).normal(size=12)
     loo = [float(np.mean(np.delete(x, k))) for k in range(12)]
-    assert jackknife_se(float(x.mean()), loo) == pytest.approx(float(x.std(ddof=1) / np.sqrt(12)))
+    assert jackknife_se(loo) == pytest.approx(float(x.std(ddof=1) / np.sqrt(12)))

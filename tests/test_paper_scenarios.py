@@ -286,14 +286,14 @@ def test_heldout_verdict_says_when_it_hangs_on_the_fits_pick(tmp_path, monkeypat
 def test_shipped_heldout_study_matches_the_shipped_heldout_fits():
     """docs/studies/heldout_span was made from the same install's full fit as the stored held-out
     fits: each held-out fit's first design is the study's (else validate's span column would
-    describe another fit), and each first design is among the study's designs within its noise."""
+    describe another fit), and each study has designs within its fit's noise to judge."""
     import rotorlanding.validate as v
 
     span = v.heldout_span()
     assert sorted(span) == [3000, 7000, 10000]
     for rpm, sp in span.items():
         assert sp["first"] == v._heldout_first(rpm), rpm
-        assert 1 <= sp["passing"] <= sp["n"]
+        assert sp["n"] >= 1 and 0 <= sp["passing"] <= sp["n"]
 
 
 def test_class_verdict_counts_drops_with_a_binomial_error():

@@ -56,7 +56,11 @@ def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
     scored = []
     for r in rows:
         total, se = sub_score(r, fit)
-        scored.append({**r, "score": total, "score_se": se})
+        # a landing that failed at the held-out speed is no reason to leave the design out of the
+        # fit made without that speed (per-case counts since session 25; the total before)
+        failed = (sum(int(r[f"{c}_failed"]) for c in fit) if all(f"{c}_failed" in r for c in fit)
+                  else r.get("failed_landings"))
+        scored.append({**r, "score": total, "score_se": se, "failed_landings": failed})
     scored.sort(key=lambda r: r["score"])
     near = within_noise(scored)
     need = math.ceil(CLASS_SHARE * drops - 1e-9)
@@ -112,7 +116,7 @@ def main(argv=None) -> int:
         src = Path(a.source)
         rows = json.loads(src.read_text())["designs"]
     else:
-        rows = calibrate(space.relative_to(ROOT) if Path.cwd() == ROOT else space, out / "fit", workers=a.workers)
+        rows = calibrate(space, out / "fit", workers=a.workers)
         src = out / "fit" / "calibration.json"
     if not rows or "err_fw3000_se" not in rows[0]:
         print(f"{src}: no per-part errors (err_<part>_se); re-run calibrate (session 25 or later)", file=sys.stderr)
