@@ -29,7 +29,7 @@ Python API (SI units; names say the unit where not SI)::
 __version__ = "0.1.0"
 
 from .api import InputError, Landing, Modes, Rotor, Scenario, Series, simulate  # noqa: E402
-from .api_studies import Coastdown, Diagnosis, Sweep, coastdown, diagnose, sweep  # noqa: E402
+from .api_studies import Calibration, Coastdown, Diagnosis, Sweep, calibrate, coastdown, diagnose, sweep  # noqa: E402
 
 __all__ = ["Rotor", "Modes", "Scenario", "Landing", "Series", "simulate", "coastdown", "Coastdown", "sweep", "Sweep",
-           "diagnose", "Diagnosis", "InputError", "__version__"]
+           "diagnose", "Diagnosis", "calibrate", "Calibration", "InputError", "__version__"]

@@ -1,4 +1,4 @@
-"""The Python API of the studies: coast-down, sweep and model-gap diagnosis.
+"""The Python API of the studies: coast-down, sweep, model-gap diagnosis and calibration.
 
 ``rotorlanding.coastdown(...)``, ``rotorlanding.sweep(...)`` and ``rotorlanding.diagnose(...)``
 run the code of the commands ``rotorlanding coastdown|sweep|diagnose`` (the machinery lives in
@@ -29,7 +29,7 @@ from .api import Scenario, _override_items, _SeriesResults, _toml_dump
 from .errors import InputError
 from .safeio import atomic_write_text, save_figure
 
-__all__ = ["Coastdown", "coastdown", "Sweep", "sweep", "Diagnosis", "diagnose"]
+__all__ = ["Coastdown", "coastdown", "Sweep", "sweep", "Diagnosis", "diagnose", "Calibration", "calibrate"]
 
 
 def _png(path, default: str) -> Path:
@@ -570,3 +570,126 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
                  time_offset_s=time_offset_s, parameters=parameters, noise_gap=noise_gap, ensemble=ensemble,
                  journals=journals.split(",") if isinstance(journals, str) else journals, cli_names=False)
     return Diagnosis(out_dir)
+
+
+class Calibration:
+    """Results of a calibration (:func:`calibrate` or :meth:`load`): the output folder of
+    ``rotorlanding calibrate`` (calibration.csv, calibration.json).
+
+    Attributes:
+        designs: every design as a dict, best first (the command's ranking: designs checked at
+            half the step and converged first): ``design`` (its number in the Monte Carlo draw),
+            ``score`` [-] (sum of relative errors against the paper's experiments, 1 per wrong
+            whirl class) and ``score_se`` [-] (its standard error on ensembles, else None),
+            ``within_noise_of_best``, ``converged``, the searched keys (in their units, SI),
+            ``err_<part>`` and ``err_<part>_se`` [-], per case ``<case>_direction``, ``<case>_hz``
+            [Hz] and on ensembles the DE journal's ``<case>_de_direction``, ``<case>_de_hz`` [Hz],
+            ``<case>_de_forward`` (drops)
+        keys: the searched keys (dotted; a tied key "a,b" sets both to one value)
+        best: the first design
+        within_noise: the designs the search cannot tell from the best (a score within
+            ``noise_z`` standard errors of the difference); [] without score errors (single landings)
+        span: {key: [min, max]} over ``within_noise``: what the fit determines ({} without errors)
+        noise_z: standard errors of a difference that tell two designs apart (2)
+        space: the space file the run read
+        out_dir: the output folder
+    """
+
+    def __init__(self, out_dir):
+        self.out_dir = Path(out_dir)
+        f = self.out_dir / "calibration.json"
+        if not f.is_file():
+            raise InputError("calibration folder", str(self.out_dir),
+                             "holds no calibration.json (not a calibration's output)")
+        try:
+            data = json.loads(f.read_text())
+        except ValueError as exc:
+            raise InputError("calibration file", str(f), f"not JSON ({exc})") from None
+        self.designs = list(data["designs"])
+        self.space = data.get("space")
+        self.noise_z = data.get("noise_z")
+        self.span = dict(data.get("within_noise_span") or {})
+        self.keys = [k for k in self.designs[0] if "." in k and not k.endswith("_half_step")] if self.designs else []
+
+    @classmethod
+    def load(cls, out_dir) -> "Calibration":
+        """Read the output folder of a calibration (``calibration.json`` inside)."""
+        return cls(out_dir)
+
+    best = property(lambda self: self.designs[0])
+    within_noise = property(lambda self: [d for d in self.designs if d.get("within_noise_of_best")])
+
+    @property
+    def overrides(self) -> dict:
+        """The best design as ``{dotted key: value}`` (tied keys split), for ``Scenario.with_overrides``."""
+        return {k.strip(): self.best[tied] for tied in self.keys for k in tied.split(",")}
+
+    def plot(self, path=None) -> Path:
+        """Per searched key: every design's score [-] against the key's value, with its standard
+        error where known, the designs within the noise of the best filled and the best starred;
+        the span they cover shaded. PNG (default ``calibration.png``); returns the path."""
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        path = _png(path, "calibration.png")
+        n = max(1, len(self.keys))
+        fig, axes = plt.subplots(1, n, figsize=(5.0 * n, 3.8), squeeze=False)
+        for ax, key in zip(axes[0], self.keys):
+            x = np.array([d[key] for d in self.designs], dtype=float)
+            y = np.array([d["score"] for d in self.designs], dtype=float)
+            e = np.array([d.get("score_se") or 0.0 for d in self.designs], dtype=float)
+            near = np.array([bool(d.get("within_noise_of_best")) for d in self.designs])
+            if key in self.span:
+                ax.axvspan(*self.span[key], color="tab:green", alpha=0.12,
+                           label=f"within the noise of the best ({self.noise_z:g} s.e.)")
+            ax.errorbar(x[~near], y[~near], yerr=e[~near], fmt="o", mfc="white", color="0.45", ms=5, lw=0.8,
+                        label="other designs")
+            if near.any():
+                ax.errorbar(x[near], y[near], yerr=e[near], fmt="o", color="tab:green", ms=5, lw=0.8,
+                            label="designs within the noise")
+            ax.plot([x[0]], [y[0]], "*", color="tab:red", ms=14, label=f"best (design {self.best['design']})")
+            lengths = ("diameter", "clearance", "length", "thickness", "_m")
+            ax.set_xlabel(f"{key} [m]" if key.endswith(lengths) else f"{key} (SI units)")
+            ax.set_ylabel("score [-] (+/- standard error)")
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        fig.suptitle(f"calibration: {self.space}", fontsize=10)
+        fig.tight_layout()
+        save_figure(fig, path)
+        plt.close(fig)
+        return path
+
+    def __repr__(self) -> str:
+        se = self.best.get("score_se") if self.designs else None
+        return (f"Calibration({len(self.designs)} designs, best {self.best['design']} score {self.best['score']:.3g}"
+                + ("" if se is None else f" +/- {se:.2g}") + f", {len(self.within_noise)} within its noise)")
+
+
+def calibrate(space, out_dir, *, workers: int = 2) -> Calibration:
+    """Monte Carlo calibration of rig unknowns against the paper's validation data
+    (``rotorlanding calibrate``: the same code and files, ``out_dir``/calibration.csv and
+    calibration.json).
+
+    Parameters:
+        space: the space file (TOML): the unknowns' ranges, samples, seed, t_end [s], the cases
+            scored and the drops per case (``ensemble``); the shipped ones are in
+            ``scenarios/calibration/`` (``rotor_landings.toml``: the rig rotor fitted by landing,
+            576 landings, ~10 min on 2 cores).
+        out_dir: output folder (created).
+        workers: worker processes (>= 1).
+
+    Returns a :class:`Calibration` (``.best``, ``.overrides``, ``.within_noise``, ``.span``,
+    ``.plot()``). Bad input raises :class:`InputError` before any landing.
+    """
+    from .calibrate_run import calibrate as run_calibration
+    from .safeio import check_out_dir
+
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise InputError("workers", workers, "an integer >= 1")
+    if not isinstance(space, (str, Path)):
+        raise InputError("space", type(space).__name__, "must be a calibration space file (path, TOML)")
+    check_out_dir(out_dir, "out_dir")
+    run_calibration(space, out_dir, workers=workers)
+    return Calibration(out_dir)

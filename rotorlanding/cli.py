@@ -379,7 +379,7 @@ def cmd_diagnose(args) -> int:
 
 
 def cmd_calibrate(args) -> int:
-    from .calibrate import calibrate
+    from .calibrate_run import calibrate
 
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
@@ -394,7 +394,7 @@ def cmd_calibrate(args) -> int:
         print(f"rotorlanding: warning: {failed} of {len(rows)} designs had a landing that failed "
               f"(failed_landings in {args.out}/calibration.csv)", file=sys.stderr)
     best = rows[0]
-    from .calibrate import design_overrides
+    from .calibrate_run import design_overrides
 
     keys = [k for k in best if "." in k and not k.endswith("_half_step")]
     conv = {True: "converged at h/2", False: "NOT converged at h/2", None: "step convergence not checked"}
@@ -403,7 +403,7 @@ def cmd_calibrate(args) -> int:
     print("best as --set: " + " ".join(f"--set {s}" for s in design_overrides({k: best[k] for k in keys})))
     near = [r for r in rows if r.get("within_noise_of_best")]
     if near:  # what the fit determines: the designs it cannot rank against the best, and their span
-        from .calibrate import NOISE_Z
+        from .calibrate_run import NOISE_Z
 
         print(f"{len(near)} design(s) within the noise of the best (score within {NOISE_Z:g} standard errors "
               f"of the difference; best {best['score']:.3f} +/- {best['score_se']:.3f}): "

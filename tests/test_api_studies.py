@@ -334,3 +334,34 @@ def test_readme_studies_snippet_runs(tmp_path, monkeypatch):
     assert scope["cd"].summary["performance"]["simulated_s"] == pytest.approx(0.4)
     assert len(scope["sw"].table) == 4 and (tmp_path / "w.png").is_file() and (tmp_path / "s.png").is_file()
     assert (tmp_path / "dg" / "report.json").is_file() and not (ROOT / "diag_out").exists()
+
+
+def test_calibrate_from_python_returns_the_designs_with_their_noise(tmp_path):
+    """rl.calibrate runs the command's calibration (tiny: 2 designs, 2 drops of 0.1 s at 7000 rpm)
+    and returns a Calibration that reads calibration.json back: designs best first, the score's
+    error on ensembles, the designs within the best's noise (the best among them) and their span,
+    the best as overrides, a figure; bad input is an InputError before any landing."""
+    import rotorlanding as rl
+
+    space = tmp_path / "space.toml"
+    space.write_text('samples = 2\nseed = 3\nt_end = 0.1\ncases = ["fw7000"]\nensemble = 2\n'
+                     '[ranges]\n"bearings.DE.c_rib,bearings.NDE.c_rib" = {min = 1e3, max = 3e4, log = true}\n')
+    cal = rl.calibrate(space, tmp_path / "c", workers=2)
+    assert isinstance(cal, rl.Calibration) and len(cal.designs) == 2
+    assert cal.designs[0]["score"] <= cal.designs[1]["score"] and cal.best is cal.designs[0]
+    assert cal.best["score_se"] > 0 and cal.noise_z == 2.0
+    assert cal.best in cal.within_noise
+    lo, hi = cal.span["bearings.DE.c_rib,bearings.NDE.c_rib"]
+    assert 1e3 <= lo <= cal.best["bearings.DE.c_rib,bearings.NDE.c_rib"] <= hi <= 3e4
+    v = cal.best["bearings.DE.c_rib,bearings.NDE.c_rib"]
+    assert cal.overrides == {"bearings.DE.c_rib": v, "bearings.NDE.c_rib": v}
+    assert rl.Calibration.load(tmp_path / "c").designs == cal.designs
+    assert cal.plot(tmp_path / "cal.png").stat().st_size > 5000
+    assert "2 designs" in repr(cal)
+    for kwargs in ({"workers": 0}, {"workers": 1.5}):
+        with pytest.raises(rl.InputError):
+            rl.calibrate(space, tmp_path / "d", **kwargs)
+    with pytest.raises(rl.InputError):
+        rl.calibrate({"ranges": {}}, tmp_path / "d")
+    with pytest.raises(rl.InputError):
+        rl.Calibration.load(tmp_path)

@@ -399,7 +399,7 @@ def _no_solves(monkeypatch):
     """Replace every solve entry point: the corpus must fail before any of them."""
     import scipy.optimize
 
-    import rotorlanding.calibrate
+    import rotorlanding.calibrate_run
     import rotorlanding.coastdown_run
     import rotorlanding.diagnose_run
     import rotorlanding.run
@@ -411,7 +411,7 @@ def _no_solves(monkeypatch):
     monkeypatch.setattr(rotorlanding.diagnose_run, "diagnose", _refuse)
     monkeypatch.setattr(rotorlanding.sweep_run, "warm_up", _refuse)
     monkeypatch.setattr(rotorlanding.sweep_run, "_run_local", _refuse)
-    monkeypatch.setattr(rotorlanding.calibrate, "_run_all", _refuse)
+    monkeypatch.setattr(rotorlanding.calibrate_run, "_run_all", _refuse)
     monkeypatch.setattr(rotorlanding.validate, "validate", _refuse)
     monkeypatch.setattr(scipy.optimize, "differential_evolution", _refuse)
 
@@ -709,11 +709,11 @@ def test_sweep_all_failed_exits_1_and_partial_counts(monkeypatch, tmp_path, caps
 
 
 def test_calibrate_all_failed_exits_1_and_partial_counts(monkeypatch, tmp_path, capsys):
-    import rotorlanding.calibrate
+    import rotorlanding.calibrate_run
 
     rows = [{"design": 0, "score": 9.0, "converged": None, "failed_landings": 4},
             {"design": 1, "score": 9.0, "converged": None, "failed_landings": 1}]
-    monkeypatch.setattr(rotorlanding.calibrate, "calibrate", lambda *a, **k: rows)
+    monkeypatch.setattr(rotorlanding.calibrate_run, "calibrate", lambda *a, **k: rows)
     assert main(["calibrate", str(CAL_SPACE), "--out", str(tmp_path)]) == 1
     assert "every one of the 2 designs had a landing that failed" in capsys.readouterr().err
     rows[1]["failed_landings"] = 0
@@ -725,7 +725,7 @@ def test_every_shipped_input_still_loads():
     """The plausibility limits sit where physics ends: every scenario, rotor, sweep case,
     calibration space (load_space checks both ends of its ranges) and fit-mode range end shipped
     in scenarios/, and both ends of every parameter range diagnose searches, must load."""
-    from rotorlanding import calibrate, modefit, sweep_run, whirlmap
+    from rotorlanding import calibrate_run, modefit, sweep_run, whirlmap
     from rotorlanding.coastdown_run import load_coastdown
     from rotorlanding.effects import CATALOGUE
     from rotorlanding.rotor import load_rotor, rotor_from_dict
@@ -758,7 +758,7 @@ def test_every_shipped_input_still_loads():
                 load_scenario(sw["base"], sweep_run._overrides(sw["fixed"], case))
             kinds["sweep"] += 1
         elif "ranges" in data:
-            calibrate.load_space(f)
+            calibrate_run.load_space(f)
             kinds["calibration space"] += 1
         elif "axes" in data:  # a whirl-risk map: every cell loads
             wm = whirlmap.load_map(f)

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from rotorlanding.calibrate import score
+from rotorlanding.calibrate_run import score
 from rotorlanding.cli import main
 
 
@@ -35,7 +35,7 @@ def test_tiny_calibration_run(tmp_path, capsys):
 
 
 def test_tied_keys_expand_and_step_convergence_rule():
-    from rotorlanding.calibrate import converged, design_overrides
+    from rotorlanding.calibrate_run import converged, design_overrides
 
     sets = design_overrides({"bearings.DE.eta,bearings.NDE.eta": 0.2}, {"solver.step": 1e-4})
     assert sets == ["solver.step=0.0001", "bearings.DE.eta=0.2", "bearings.NDE.eta=0.2"]
@@ -91,7 +91,7 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
 def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
     """When none of the ``verify_top`` best designs converges at half the step, the next batch is
     verified; converged designs rank first, unchecked next, unconverged last."""
-    from rotorlanding import calibrate as cal
+    from rotorlanding import calibrate_run as cal
 
     def fake_run_all(jobs, workers):
         out = {}
@@ -115,7 +115,7 @@ def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
 def test_ensemble_option_applies_to_every_case(monkeypatch, tmp_path):
     """``ensemble = n`` runs each scored case as n drops; the members fold into the case's
     statistics, and the forward force score reads their median peak force."""
-    from rotorlanding import calibrate as cal
+    from rotorlanding import calibrate_run as cal
 
     sp = {"cases": ["fw7000", "bw"], "ensemble": 3, "t_end": 0.1, "fixed": {}}
     jobs = cal._jobs({0: {"x": 1.0}}, sp, 1.0)
@@ -143,7 +143,7 @@ def test_ensemble_option_applies_to_every_case(monkeypatch, tmp_path):
 def test_worn_bearing_calibration_scores_the_drops_validate_judges():
     """The report says the backward onset was calibrated on its own ensemble's drops: the space
     file's ensemble must be validate's backward ensemble (same size, hence the same drop points)."""
-    from rotorlanding.calibrate import load_space
+    from rotorlanding.calibrate_run import load_space
     from rotorlanding.validate import ENSEMBLE
 
     space = load_space(Path(__file__).resolve().parents[1] / "scenarios" / "calibration" / "worn_bearing.toml")
@@ -154,7 +154,7 @@ def test_worn_bearing_calibration_scores_the_drops_validate_judges():
 def test_switch_case_scores_the_share_of_whirling_drops_at_normal_friction():
     """bw015 (the backward landing's bearing at mu_rad 0.15, Table 1's switch) must land calm:
     its score part is the share of its drops that whirl, in either direction."""
-    from rotorlanding.calibrate import CASES, score
+    from rotorlanding.calibrate_run import CASES, score
 
     assert CASES["bw015"] == ("backward_whirl_landing.toml", ["contact.mu_rad=0.15"])
     total, parts = score({"bw015": {"counts": {"none": 6, "backward": 1, "forward": 1}}}, ["bw015"])
@@ -180,7 +180,7 @@ def test_score_error_adds_the_parts_errors_and_a_share_has_the_binomial_error():
     in quadrature; the binomial rule checked against a Monte Carlo draw of 8-drop ensembles."""
     import numpy as np
 
-    from rotorlanding.calibrate import score_parts, score_se
+    from rotorlanding.calibrate_run import score_parts, score_se
     from rotorlanding.ensemble import share_se
 
     ens = {"n": 8, "direction": "forward", "frequency_hz": 46.0,
@@ -201,7 +201,7 @@ def test_score_error_adds_the_parts_errors_and_a_share_has_the_binomial_error():
 def test_designs_within_noise_of_the_best_and_their_span():
     """A design is indistinguishable from the best when its score is above the best's by no more
     than NOISE_Z standard errors of the difference; failed or error-less designs are never in."""
-    from rotorlanding.calibrate import NOISE_Z, noise_span, within_noise
+    from rotorlanding.calibrate_run import NOISE_Z, noise_span, within_noise
 
     rows = [{"design": 8, "score": 0.067, "score_se": 0.15, "failed_landings": 0, "x": 0.0407},
             {"design": 18, "score": 0.231, "score_se": 0.17, "failed_landings": 0, "x": 0.0398},
@@ -237,7 +237,7 @@ def test_rig_landing_fit_reruns_and_keeps_the_rotor_file_within_its_noise(tmp_pa
     cores), that design is among those the fit cannot tell from its best. Which of them ranks first
     moves with the install's arithmetic (session 24: design 8, 40.73 / 420.9 mm, on numpy 2.4.6), so
     the fit's claim, and this test's, is the set and its span (docs/calibration.md, session 25)."""
-    from rotorlanding.calibrate import calibrate
+    from rotorlanding.calibrate_run import calibrate
     from rotorlanding.config import load_toml
 
     root = Path(__file__).resolve().parents[1]

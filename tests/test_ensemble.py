@@ -88,7 +88,7 @@ def test_median_standard_error_matches_sampling_scatter():
 
 
 def test_step_convergence_of_ensemble_medians_allows_for_their_noise():
-    from rotorlanding.calibrate import converged
+    from rotorlanding.calibrate_run import converged
 
     a = {"bw": {"direction": "backward", "frequency_hz": 50.0, "frequency_se_hz": 1.4}}
     b = {"bw": {"direction": "backward", "frequency_hz": 52.5, "frequency_se_hz": 1.4}}  # 5 %, 2 se = 4 Hz
@@ -101,7 +101,7 @@ def test_step_convergence_of_ensemble_medians_allows_for_their_noise():
 
 def test_step_convergence_of_ensemble_onsets_allows_for_their_noise():
     """An ensemble's median onset may move by 0.05 s or twice its noise between steps h and h/2."""
-    from rotorlanding.calibrate import ONSET_TOL_S, converged
+    from rotorlanding.calibrate_run import ONSET_TOL_S, converged
 
     base = {"direction": "backward", "frequency_hz": 50.0, "frequency_se_hz": 1.0}
     a = {"bw": dict(base, onset_s=0.40, onset_se_s=0.10)}

@@ -29,7 +29,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from rotorlanding.calibrate import NOISE_Z, calibrate, within_noise  # noqa: E402
+from rotorlanding.calibrate_run import NOISE_Z, calibrate, within_noise  # noqa: E402
 from rotorlanding.safeio import atomic_write_text  # noqa: E402
 from rotorlanding.validate import CLASS_SHARE, paper  # noqa: E402
 
@@ -121,7 +121,7 @@ def main(argv=None) -> int:
     if not rows or "err_fw3000_se" not in rows[0]:
         print(f"{src}: no per-part errors (err_<part>_se); re-run calibrate (session 25 or later)", file=sys.stderr)
         return 2
-    from rotorlanding.calibrate import load_space
+    from rotorlanding.calibrate_run import load_space
 
     drops = load_space(space)["ensemble"]
     res = [heldout(rows, rpm, drops) for rpm in SPEEDS]

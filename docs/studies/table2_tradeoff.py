@@ -99,7 +99,7 @@ def table2(r: dict) -> dict:
 
 def run(samples: int, seed: int, drops: int, ranges: dict) -> list[dict]:
     sys.path.insert(0, str(ROOT))
-    from rotorlanding.calibrate import _check_ranges, _jobs, _run_all, score
+    from rotorlanding.calibrate_run import _check_ranges, _jobs, _run_all, score
     from rotorlanding.config import sample_ranges
 
     _check_ranges({}, ranges, CASES)  # every range end loads in every case (bounds, schema)
