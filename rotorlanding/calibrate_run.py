@@ -164,15 +164,23 @@ def score(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> tuple
     the share of its drops that whirl, as ``bw015_whirls``. ``force = False`` leaves Table 2's force
     maximum out of the score (``score_force`` in the space file), so that it stays a prediction."""
     parts = score_parts(res, cases, force=force)
-    return float(sum(v for v, _ in parts.values())), {k: v for k, (v, _) in parts.items()}
+    return _total(parts), {k: v for k, (v, _) in parts.items()}
+
+
+def _total(parts: dict) -> float:
+    return float(sum(v for v, _ in parts.values()))
+
+
+def _quadrature(parts: dict) -> float | None:
+    ses = [se for _, se in parts.values()]
+    return None if any(se is None for se in ses) else math.sqrt(sum(se * se for se in ses))
 
 
 def score_se(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> float | None:
     """Standard error of ``score``: the parts' errors added in quadrature (the drops of each case are
     their own draws). ``None`` when a part has no error to give: a single landing per case is one
     draw of a chaotic landing, with no spread to measure."""
-    ses = [se for _, se in score_parts(res, cases, force=force).values()]
-    return None if any(se is None for se in ses) else math.sqrt(sum(se * se for se in ses))
+    return _quadrature(score_parts(res, cases, force=force))
 
 
 def score_parts(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> dict:
@@ -326,10 +334,10 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     results = _run_all(_jobs(dict(enumerate(sp["designs"])), sp, 1.0), workers)
     rows = []
     for i, d in enumerate(sp["designs"]):
-        total, parts = score(results[i], cases, force=sp["score_force"])
-        part_se = {k: se for k, (_, se) in score_parts(results[i], cases, force=sp["score_force"]).items()}
+        both = score_parts(results[i], cases, force=sp["score_force"])  # (value, error) per part, once
+        parts, part_se = {k: v for k, (v, _) in both.items()}, {k: se for k, (_, se) in both.items()}
         de = {c: results[i][c].get("de") or {} for c in cases}
-        rows.append({"design": i, "score": total, "score_se": score_se(results[i], cases, force=sp["score_force"]),
+        rows.append({"design": i, "score": _total(both), "score_se": _quadrature(both),
                      "within_noise_of_best": None, "converged": None, "score_half_step": None,
                      "failed_landings": sum(results[i][c].get("failed", 0) for c in cases), **d,
                      **{f"err_{k}": v for k, v in parts.items()},

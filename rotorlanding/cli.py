@@ -403,13 +403,13 @@ def cmd_calibrate(args) -> int:
     print("best as --set: " + " ".join(f"--set {s}" for s in design_overrides({k: best[k] for k in keys})))
     near = [r for r in rows if r.get("within_noise_of_best")]
     if near:  # what the fit determines: the designs it cannot rank against the best, and their span
-        from .calibrate_run import NOISE_Z
+        from .calibrate_run import NOISE_Z, noise_span
 
         print(f"{len(near)} design(s) within the noise of the best (score within {NOISE_Z:g} standard errors "
               f"of the difference; best {best['score']:.3f} +/- {best['score_se']:.3f}): "
               + ", ".join(str(r["design"]) for r in near))
-        for k in keys:
-            print(f"  {k}: {min(r[k] for r in near):.6g} .. {max(r[k] for r in near):.6g} over them")
+        for k, (lo, hi) in noise_span(rows, keys).items():
+            print(f"  {k}: {lo:.6g} .. {hi:.6g} over them")
     elif best.get("score_se") is None:
         print("no score error (single landings per case): the ranking's noise is unknown; use ensemble > 1")
     return 0

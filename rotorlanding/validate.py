@@ -143,17 +143,23 @@ def holdout_dir() -> Path:
     return project_root() / "scenarios" / "calibration" / "holdout"
 
 
+def _holdout_best(rpm: int) -> dict | None:
+    """The first design of the stored landing fit made without ``rpm`` (None when it has not run)."""
+    cal = holdout_dir() / f"without_{rpm}rpm" / "calibration.json"
+    return json.loads(cal.read_text())["designs"][0] if cal.is_file() else None
+
+
 def _holdout_sets(rpm: int) -> list[str] | None:
     """``--set`` overrides of the rotor fitted without the ``rpm`` landing: the best design of
     ``scenarios/calibration/holdout/without_<rpm>rpm/calibration.json`` (written by ``calibrate`` on
     ``without_<rpm>rpm_landings.toml``, the rotor fitted by landings since session 15), else the
     values of ``modefit.json`` there (written by ``fit-modes``); None when neither fit has been run."""
     d = holdout_dir() / f"without_{rpm}rpm"
-    cal, space = d / "calibration.json", holdout_dir() / f"without_{rpm}rpm_landings.toml"
-    if cal.is_file() and space.is_file():
+    space = holdout_dir() / f"without_{rpm}rpm_landings.toml"
+    best = _holdout_best(rpm)
+    if best is not None and space.is_file():
         from .config import load_toml
 
-        best = json.loads(cal.read_text())["designs"][0]
         sets = []
         for tied in load_toml(space).get("ranges", {}):
             sets += [f"{k.strip()}={best[tied]!r}" for k in tied.split(",")]
@@ -184,8 +190,8 @@ def heldout_span() -> dict:
 
 def _heldout_first(rpm: int) -> int | None:
     """The design number the stored held-out fit ranks first (None without a landing fit)."""
-    cal = holdout_dir() / f"without_{rpm}rpm" / "calibration.json"
-    return json.loads(cal.read_text())["designs"][0]["design"] if cal.is_file() else None
+    best = _holdout_best(rpm)
+    return None if best is None else best["design"]
 
 
 def studies(rig=None) -> dict:
