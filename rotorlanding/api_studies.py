@@ -592,6 +592,9 @@ class Calibration:
         span: {key: [min, max]} over ``within_noise``: what the fit determines ({} without errors)
         noise_z: standard errors of a difference that tell two designs apart (2)
         space: the space file the run read
+        ensemble: drops per case of each design (1: single centred landings); None for a run
+            written before session 26
+        cases: the landings scored (e.g. ``["fw3000", "fw7000", "fw10000"]``); None likewise
         out_dir: the output folder
     """
 
@@ -608,6 +611,8 @@ class Calibration:
         self.designs = list(data["designs"])
         self.space = data.get("space")
         self.noise_z = data.get("noise_z")
+        self.ensemble = data.get("ensemble")
+        self.cases = data.get("cases")
         self.span = dict(data.get("within_noise_span") or {})
         self.keys = [k for k in self.designs[0] if "." in k and not k.endswith("_half_step")] if self.designs else []
 

@@ -394,6 +394,7 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     w.writerows(rows)
     atomic_write_text(out / "calibration.csv", buf.getvalue())
     atomic_write_text(out / "calibration.json", json.dumps(
-        {"space": str(space_path), "noise_z": NOISE_Z, "within_noise_span": noise_span(rows, list(sp["designs"][0])),
+        {"space": str(space_path), "ensemble": sp["ensemble"], "cases": list(cases), "noise_z": NOISE_Z,
+         "within_noise_span": noise_span(rows, list(sp["designs"][0])),
          "designs": rows}, indent=2, default=float))
     return rows

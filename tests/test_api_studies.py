@@ -349,7 +349,7 @@ def test_calibrate_from_python_returns_the_designs_with_their_noise(tmp_path):
     cal = rl.calibrate(space, tmp_path / "c", workers=2)
     assert isinstance(cal, rl.Calibration) and len(cal.designs) == 2
     assert cal.designs[0]["score"] <= cal.designs[1]["score"] and cal.best is cal.designs[0]
-    assert cal.best["score_se"] > 0 and cal.noise_z == 2.0
+    assert cal.best["score_se"] > 0 and cal.noise_z == 2.0 and cal.ensemble == 2 and cal.cases == ["fw7000"]
     assert cal.best in cal.within_noise
     lo, hi = cal.span["bearings.DE.c_rib,bearings.NDE.c_rib"]
     assert 1e3 <= lo <= cal.best["bearings.DE.c_rib,bearings.NDE.c_rib"] <= hi <= 3e4

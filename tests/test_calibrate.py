@@ -1,6 +1,7 @@
 """Calibration against the paper: scoring rule and a tiny end-to-end run."""
 
 import csv
+import json
 from pathlib import Path
 
 import pytest
@@ -276,3 +277,31 @@ def test_heldout_span_scores_the_two_fitted_speeds_and_judges_each_design_in_the
     assert h["first"] == 0 and [p["design"] for p in h["within_noise"]] == [0, 1, 2]
     assert [p["pass"] for p in h["within_noise"]] == [False, True, False] and h["passing"] == 1
     assert h["within_noise"][0]["error"] == pytest.approx(40.0 / 48.0 - 1)
+
+
+def test_heldout_span_reads_the_drops_of_the_run_it_is_given(tmp_path):
+    """The study judges 'DE forward in >= 7 of 8' on the fit's own ensemble size: a run with 16 drops
+    per speed (calibration.json's ``ensemble``, or the space file it names) is judged on 14 of 16,
+    not on the repository's space file's 8."""
+    import importlib.util
+
+    path = Path(__file__).resolve().parents[1] / "docs" / "studies" / "heldout_span.py"
+    spec = importlib.util.spec_from_file_location("heldout_span", path)
+    hs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(hs)
+    default = Path(__file__).resolve().parents[1] / "scenarios" / "calibration" / "rotor_landings.toml"
+    j = tmp_path / "calibration.json"
+    j.write_text(json.dumps({"space": "x.toml", "ensemble": 16, "designs": []}))
+    assert hs.run_drops(j, default) == 16
+    space16 = tmp_path / "s16.toml"
+    space16.write_text(default.read_text().replace("ensemble = 8", "ensemble = 16"))
+    j.write_text(json.dumps({"space": str(space16), "designs": []}))
+    assert hs.run_drops(j, default) == 16
+    j.write_text(json.dumps({"space": str(tmp_path / "gone.toml"), "designs": []}))
+    assert hs.run_drops(j, default) == 8
+    row = {"design": 0, hs.KEYS[0]: 0.04, hs.KEYS[1]: 0.42, "fw3000_de_hz": 47.0, "fw3000_de_forward": 13,
+           "fw3000_de_direction": "forward"}
+    for c in ("fw3000", "fw7000", "fw10000"):
+        row.update({f"err_{c}": 0.01, f"err_{c}_se": 0.01, f"err_{c}_de": 0.0, f"err_{c}_de_se": 0.03})
+    assert not hs.heldout([row], 3000, 16)["within_noise"][0]["pass"]  # 13 of 16 < 14
+    assert hs.heldout([row], 3000, 8)["within_noise"][0]["pass"]
