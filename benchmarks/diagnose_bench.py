@@ -134,7 +134,7 @@ def judge(case: dict, res: dict) -> bool:
 
 
 def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
-             directed: bool = False) -> dict:
+             directed: bool = False, noise_members: int | None = None) -> dict:
     from sensor_model import C, THRUST, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
@@ -168,7 +168,8 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
     clearance, _, meas, info = (measured_for_diagnosis(model, rec, [], None) if repeats == 1
                                 else records_for_diagnosis(model, recs, []))
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
-                   max_effects=case["max_effects"], journals=journals, ensemble=ensemble, directed=directed)
+                   max_effects=case["max_effects"], journals=journals, ensemble=ensemble, directed=directed,
+                   **({} if noise_members is None else {"noise_members": noise_members}))
     wall = time.perf_counter() - t0
     named = res["named_effects"] + [q["key"] for q in res["named_parameters"]]
     return {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
@@ -233,6 +234,8 @@ def main(argv=None) -> int:
                          "disc, seeded per case)")
     ap.add_argument("--directed", action="store_true",
                     help="diagnose's directed test inside the noise gate (diagnose_run._directed_test)")
+    ap.add_argument("--noise-members", type=int, default=None,
+                    help="diagnose's noise_members: drops of the model behind each noise gate (default diagnose's)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -252,7 +255,7 @@ def main(argv=None) -> int:
                 continue
             try:
                 row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats,
-                               a.directed)
+                               a.directed, a.noise_members)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],
