@@ -556,7 +556,8 @@ def calibrated_keys() -> dict[str, tuple[str, dict]]:
 
 #: calibration file -> a stored run of it with the scores' errors (calibrate since session 25), whose
 #: ``within_noise_span`` the rig table shows: what the fit determines, beside the value adopted
-STORED_FITS = {"scenarios/calibration/rotor_landings.toml": "docs/studies/heldout_span/fit/calibration.json"}
+STORED_FITS = {"scenarios/calibration/rotor_landings.toml": "docs/studies/heldout_span/fit/calibration.json",
+               "scenarios/calibration/worn_bearing.toml": "docs/studies/worn_fit/calibration.json"}
 
 
 def fit_span(cal: str, key: str) -> list[float] | None:

@@ -494,15 +494,21 @@ def test_validate_write_failures_are_one_line(monkeypatch, tmp_path, capsys):
 
 
 def test_rig_table_shows_what_the_rotor_fit_determines_and_the_adopted_rotor_lies_in_it():
-    """The rig table gives each landing-fitted rotor size the span of the designs the stored fit
-    cannot tell from its best; the rotor file's adopted value lies inside that span."""
+    """The rig table gives each landing-fitted rotor size, and the worn bearing's two unknowns, the
+    span of the designs the stored fit cannot tell from its best; the adopted values lie inside it.
+    A calibration without a stored run has no span."""
     from rotorlanding.config import get_dotted, load_toml
-    from rotorlanding.validate import fit_span, project_root, rig_checks
+    from rotorlanding.validate import fit_span, paper_dir, project_root, rig_checks
 
     rotor = {"rotor": load_toml(project_root() / "scenarios" / "rig_rotor.toml")["rotor"]}
-    for key in ("rotor.sections.3.outer_diameter", "rotor.disks.4.outer_diameter"):
-        lo, hi = fit_span("scenarios/calibration/rotor_landings.toml", key)
-        assert lo < hi and lo <= get_dotted(rotor, key) <= hi
-        c = next(c for c in rig_checks() if c["check"].startswith(key))
+    worn = load_toml(paper_dir() / "backward_whirl_landing.toml")
+    checks = rig_checks()
+    for cal, data, key in [("rotor_landings.toml", rotor, k) for k in ("rotor.sections.3.outer_diameter",
+                                                                         "rotor.disks.4.outer_diameter")] + \
+            [("worn_bearing.toml", worn, k) for k in ("bearings.DE.worn_drag_torque",
+                                                      "bearings.DE.worn_drag_growth_angle")]:
+        lo, hi = fit_span(f"scenarios/calibration/{cal}", key)
+        assert lo < hi and lo <= get_dotted(data, key) <= hi
+        c = next(c for c in checks if c["check"].startswith(key))
         assert f"the fit determines [{lo:.4g}, {hi:.4g}]" in c["ours"]
-    assert fit_span("scenarios/calibration/worn_bearing.toml", "bearings.DE.worn_drag_torque") is None
+    assert fit_span("scenarios/calibration/worn_bearing_switch.toml", "bearings.DE.worn_drag_torque") is None
