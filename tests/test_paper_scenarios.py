@@ -52,7 +52,7 @@ def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_is_the_cause_sho
     (the centred drop is mirror-symmetric and its whirl hangs on round-off). Without the worn
     bearing's drag the same mu_rad = 0.3 landing does not whirl backward (our causal claim).
     1.0 s of the 1.2 s landing: the calibrated drag develops over some tenths of a second (median
-    onset 0.33 s; by 0.5 s only 2 of 4 drops whirled). With the drag present from the drop (growth
+    onset 0.41 s since the session-26 re-fit, 0.33 s before; by 0.5 s only 2 of 4 drops whirled then). With the drag present from the drop (growth
     angle 0) at the calibrated 3.0 N m the whirl jumps to the 64-70 Hz branch instead."""
     from rotorlanding.ensemble import drop_offsets, ensemble_stats
 
