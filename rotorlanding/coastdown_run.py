@@ -253,10 +253,13 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     cd_json = json.dumps(asdict(cd))
 
     existing = path.is_file()
+    notes = []
     if resume and not existing:
-        # said, not silent: a user who meant another folder would otherwise wait for a whole new run
-        print(f"rotorlanding: note: --resume: {out} holds no coast-down to continue; starting a new one",
-              file=sys.stderr)
+        # said, not silent: a user who meant another folder would otherwise wait for a whole new run.
+        # Up front on the caller's progress stream, and in the returned summary for a quiet caller
+        notes.append(f"--resume: {out} holds no coast-down to continue; a new one was started")
+        if stream:
+            stream.write(f"note: {notes[-1]}\n")
     if existing and resume:
         check_resumable(path, scenario, cd_json)
     elif existing and not overwrite:
@@ -288,6 +291,8 @@ def run_coastdown(scenario: Scenario, cd: Coastdown, out_dir, *, resume: bool = 
     finally:
         ckpt.discard_leftovers()  # the spare doubles the disk use; a resume copies it anew
     summary["performance"]["max_buffer_samples_this_process"] = max_buffer
+    if notes:
+        summary["notes"] = notes
     try:
         atomic_write_text(out / "summary.json", json.dumps(summary, indent=2))
     except OSError as exc:
@@ -670,6 +675,7 @@ def format_summary(summary: dict) -> str:
             f = f" ~{ph['frequency_hz_median']:.1f} Hz" if ph["frequency_hz_median"] else ""
             lines.append(f"whirl: {ph['direction']}{f} from {ph['t_start_s']:.2f} to {ph['t_end_s']:.2f} s")
     lines += format_thermal(summary.get("thermal"))
+    lines += [f"note: {n}" for n in summary.get("notes", [])]
     p = summary["performance"]
     lines.append(f"performance: {p['simulated_s']:.2f} s simulated in {p['wall_s']:.1f} s wall (solver "
                  f"{p['solver_wall_s']:.1f} s; {p['wall_s_per_simulated_s']:.2f} s/s), {p['chunks']} chunks of "

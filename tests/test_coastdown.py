@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from rotorlanding.cli import main
-from rotorlanding.coastdown_run import Interrupted, load_coastdown, read_restart, run_coastdown
+from rotorlanding.coastdown_run import Interrupted, format_summary, load_coastdown, read_restart, run_coastdown
 from rotorlanding.errors import InputError
 from rotorlanding.results import read_results
 
@@ -382,3 +382,21 @@ def test_resume_of_a_file_without_the_whirl_bearing_column(tmp_path, monkeypatch
     with h5py.File(tmp_path / "results.h5", "r") as h5:
         assert "whirl_bearing" not in h5["coastdown/chunks"]
     assert all(ph.get("bearing") is None for ph in summary["whirl_phases"])
+
+
+def test_resume_into_an_empty_folder_says_so_through_its_caller(tmp_path, capsys):
+    """--resume where no coast-down lies starts a new one and says so: on the caller's progress
+    stream before the run, and in the returned summary (and its text) for a quiet caller; the
+    library itself prints nothing."""
+    import io
+
+    sc, cd = load_coastdown(SCEN, ["operating.t_end=0.05", "coastdown.chunk_s=0.05"])
+    quiet = run_coastdown(sc, cd, tmp_path / "q", resume=True, progress=False, plots=False)
+    assert capsys.readouterr().err == ""
+    assert quiet["notes"] == [f"--resume: {tmp_path / 'q'} holds no coast-down to continue; a new one was started"]
+    assert f"note: {quiet['notes'][0]}" in format_summary(quiet)
+    stream = io.StringIO()
+    loud = run_coastdown(sc, cd, tmp_path / "l", resume=True, progress=stream, plots=False)
+    assert stream.getvalue().startswith(f"note: {loud['notes'][0]}\n")
+    fresh = run_coastdown(sc, cd, tmp_path / "f", progress=False, plots=False)
+    assert "notes" not in fresh and "note:" not in format_summary(fresh)
