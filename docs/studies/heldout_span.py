@@ -31,12 +31,10 @@ sys.path.insert(0, str(ROOT))
 
 from rotorlanding.calibrate_run import NOISE_Z, calibrate, within_noise  # noqa: E402
 from rotorlanding.safeio import atomic_write_text  # noqa: E402
-from rotorlanding.validate import CLASS_SHARE, paper  # noqa: E402
+from rotorlanding.validate import HELDOUT_BAND, class_need, paper  # noqa: E402
 
 SPEEDS = {3000: "fw3000", 7000: "fw7000", 10000: "fw10000"}
 KEYS = ("rotor.sections.3.outer_diameter", "rotor.disks.4.outer_diameter")
-#: validate's held-out rule: within 10 % of the experiment
-BAND = 0.10
 
 
 def sub_score(row: dict, cases: list[str]) -> tuple[float, float | None]:
@@ -63,7 +61,6 @@ def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
         scored.append({**r, "score": total, "score_se": se, "failed_landings": failed})
     scored.sort(key=lambda r: r["score"])
     near = within_noise(scored)
-    need = math.ceil(CLASS_SHARE * drops - 1e-9)
     preds = []
     for r in near:
         hz = r.get(f"{case}_de_hz")
@@ -71,7 +68,8 @@ def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
         err = (hz - f_exp) / f_exp if hz and r.get(f"{case}_de_direction") == "forward" else None
         preds.append({"design": r["design"], **{k: r[k] for k in KEYS}, "score": r["score"], "score_se": r["score_se"],
                       "de_forward": fwd, "de_hz": hz, "error": err,
-                      "pass": bool(err is not None and abs(err) <= BAND and fwd >= need)})
+                      # validate's held-out rule: the share of drops of its class checks, and the band
+                      "pass": bool(err is not None and abs(err) <= HELDOUT_BAND and fwd >= class_need(drops))})
     return {"rpm": rpm, "fitted_on": fit, "experiment_hz": f_exp, "first": scored[0]["design"],
             "within_noise": preds, "passing": sum(p["pass"] for p in preds)}
 
@@ -82,7 +80,8 @@ def report(res: list[dict], drops: int, source: str, n: int) -> str:
              f"fit on the other two speeds cannot tell from its best (score within {NOISE_Z:g} standard errors of "
              "the difference), and what each predicts at the held-out speed from the same fit's landings there "
              f"({drops} drops; validate lands 16 on the first design). Pass: DE forward in >= "
-             f"{math.ceil(CLASS_SHARE * drops - 1e-9)} of {drops} and within 10 % of the experiment.", ""]
+             f"{class_need(drops)} of {drops} and within "
+             f"{100 * HELDOUT_BAND:g} % of the experiment.", ""]
     for h in res:
         p = h["within_noise"]
         lines += [f"## Held out {h['rpm']} rpm (experiment {h['experiment_hz']:g} Hz): "
