@@ -454,7 +454,8 @@ class Landing(_SeriesResults):
     Attributes:
         summary: the summary.json content (dict; SI units, speeds in rpm as named)
         whirl: the landing's whirl (dict: ``direction`` "forward"/"backward"/"none",
-            ``frequency_hz``, ``onset_s``, ``bearing``, ``per_bearing``)
+            ``frequency_hz``, ``onset_s``, ``bearing``, ``per_bearing``, and on two bearings
+            ``shape``: the other journal's phase, amplitude ratio and the form, cylindrical or conical)
         t: sample times [s]
         series_names, units: the series and their units ({name: unit})
         q, v, coordinates: generalised coordinates and velocities (samples x coordinates) and

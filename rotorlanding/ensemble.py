@@ -42,7 +42,7 @@ def _offset(r: float, a: float) -> list[str]:
 def member_result(summary: dict) -> dict:
     """The numbers of one landing (a run summary) that ensemble statistics and calibration use:
     the landing's whirl (``whirl.landing_whirl_bearing``: the DE's, or another bearing's when
-    only that one whirls), where it was found, the DE vertical displacement and force ranges, and
+    only that one whirls), where it was found, its shape (``whirl_form``), the DE vertical displacement and force ranges, and
     the DE inner race's speed over the rotor's at the end (``race_to_rotor``)."""
     w = landing_whirl(summary["whirl"])
     name = "DE" if "DE" in summary["bearings"] else next(iter(summary["bearings"]))  # else the first bearing
@@ -52,6 +52,8 @@ def member_result(summary: dict) -> dict:
     return {"direction": w["direction"], "bearing": w["bearing"],
             "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"],
             "end_s": w.get("end_s"), "persistence": w.get("persistence"),
+            # its shape: both journals going round together or against each other (whirl.whirl_shape)
+            "whirl_form": (w.get("shape") or {}).get("form"),
             # the DE journal's own whirl: the paper measured its frequencies there
             "de_direction": de_w.get("direction", "none"), "de_frequency_hz": de_w.get("frequency_hz"),
             "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"],
@@ -76,6 +78,9 @@ def ensemble_stats(members: list[dict]) -> dict:
     ``v_disp_range_se_m`` / ``v_force_range_se_n``: standard errors of the median peaks;
     ``race_to_rotor_se`` that of the median speed ratio; ``end_se_s`` and ``persistence_se`` those of
     the whirl's median end and persistence.
+    ``forms``: the whirl shapes (``whirl_form`` of the members of the whirl class: cylindrical,
+    conical, mixed), each with its number of drops, their median frequency and its standard error;
+    ``de["forms"]`` the same for the DE journal's whirl.
     ``de``: the DE journal's own whirl over all members (members with ``de_direction``): its class
     counts, majority class and median frequency with its standard error; the paper measured its
     whirl frequencies there, while the landing's whirl may be another bearing's.
@@ -97,6 +102,9 @@ def ensemble_stats(members: list[dict]) -> dict:
         out["frequency_locks"] = frequency_locks(freqs)
         if len(freqs) >= 2:
             out["frequency_se_hz"] = _frequency_se(freqs, out["frequency_locks"])
+        forms = _forms(same, "frequency_hz")
+        if forms:
+            out["forms"] = forms
         if onsets:
             out["onset_range_s"] = [min(onsets), max(onsets)]
         if len(onsets) >= 2:
@@ -134,7 +142,23 @@ def ensemble_stats(members: list[dict]) -> dict:
                      "frequency_hz": median(f_de) if f_de and de_dir != "none" else None,
                      "frequency_se_hz": _frequency_se(f_de, locks) if len(f_de) >= 2 and de_dir != "none" else None,
                      "frequency_locks": locks}
+        # the shape is the landing whirl's, which is the DE's whenever the DE journal whirls
+        de_forms = _forms([m for m in de if m["de_direction"] == de_dir != "none" and m.get("bearing", "DE") == "DE"],
+                          "de_frequency_hz")
+        if de_forms:
+            out["de"]["forms"] = de_forms
     return out
+
+
+def _forms(members: list[dict], key: str) -> dict:
+    """The whirl shapes of ``members`` (their ``whirl_form``), most drops first, each with its drops,
+    the median of their ``key`` frequency and its standard error (two drops or more)."""
+    groups: dict[str, list[float]] = {}
+    for m in members:
+        if m.get("whirl_form") and m.get(key) is not None:
+            groups.setdefault(m["whirl_form"], []).append(m[key])
+    return {k: {"n": len(v), "frequency_hz": median(v), **({"frequency_se_hz": _median_se(v)} if len(v) >= 2 else {})}
+            for k, v in sorted(groups.items(), key=lambda kv: -len(kv[1]))}
 
 
 def _majority(counts: Counter) -> str:

@@ -28,7 +28,7 @@ from .landing import LandingSpec
 from .mechanisms import axial_potential, dissipation_entries, input_entries, rotor_force
 from .mechanisms import evaluate as _evaluate
 from .thermal_states import summary as thermal_summary
-from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis
+from .whirl import WhirlResult, landing_whirl_bearing, whirl_analysis, whirl_shape
 
 MECHANISMS = dissipation_entries()
 INPUTS = input_entries()
@@ -64,6 +64,24 @@ def uniform(t: np.ndarray, *arrays: np.ndarray):
     return (tu,) + tuple(np.interp(tu, t, a) for a in arrays)
 
 
+def _shape(t, series: dict, names: list[str], name: str, w: dict) -> dict:
+    """``{"shape": ...}``: the landing whirl's shape against the other journal
+    (:func:`rotorlanding.whirl.whirl_shape`) over its whirl phase, for a rotor on two catcher
+    bearings (``names``) that whirls; ``{}`` otherwise (one bearing, or no whirl to take a shape of)."""
+    others = [b for b in names if b != name]
+    if w["direction"] == "none" or len(others) != 1 or w.get("onset_s") is None:
+        return {}
+    o = others[0]
+    tu, y, z, yo, zo = uniform(t, series[name + "_y_m"], series[name + "_z_m"], series[o + "_y_m"], series[o + "_z_m"])
+    t1 = w["end_s"] if w.get("end_s") is not None else tu[-1]
+    try:
+        sh = whirl_shape(tu, y, z, yo, zo, frequency_hz=w["frequency_hz"], direction=w["direction"],
+                         t0=w["onset_s"], t1=t1)
+    except ValueError:  # a whirl phase too short to demodulate
+        return {}
+    return {"shape": {"against": o, **sh}}
+
+
 def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float | None = None) -> dict:
     sc = spec.scenario
     t_drop = sc.amb.t_drop if t_drop is None else t_drop
@@ -93,7 +111,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
     name = landing_whirl_bearing(whirls)
     out = {
         "scenario": sc.name,
-        "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls},
+        "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls, **_shape(t, series, [b.name for b in spec.bearings], name, whirls[name])},
         "bearings": bearings,
         "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
                    "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},

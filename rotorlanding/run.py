@@ -206,8 +206,12 @@ def format_summary(summary: dict) -> str:
         else:
             others = [f"{k}: {v['direction']}" + (f" at {v['frequency_hz']:.1f} Hz" if v.get("frequency_hz") else "")
                       for k, v in per.items() if k != w["bearing"]]
+            sh = w.get("shape") or {}
+            shape = "" if sh.get("phase_deg") is None else (
+                f"; shape {sh['form']}: the {sh['against']} journal {sh['phase_deg']:+.0f} deg from it, "
+                f"{sh['amplitude_ratio']:.2f} x its component")
             lines.append(f"whirl at the {w['bearing']} bearing: {w['direction']}{f}"
-                         + (f"; {'; '.join(others)}" if others else ""))
+                         + (f"; {'; '.join(others)}" if others else "") + shape)
     for name, b in summary.get("bearings", {}).items():
         lines.append(f"{name}: max contact force {b['max_contact_force_n']:.0f} N, vertical range "
                      f"{b['vertical_displacement_range_m'][0] * 1e3:+.3f} / {b['vertical_displacement_range_m'][1] * 1e3:+.3f} mm, "

@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 from .ensemble import LOCK_GAP_HZ, drop_offsets, ensemble_stats, member_result, share_se
+from .whirl import FORM_PHASE_DEG
 from .errors import InputError
 from .runner import run_all, warm_model
 from .safeio import WriteError, atomic_write_text, save_figure
@@ -280,6 +281,11 @@ TABLE_ROWS = [
 ORBIT_ROWS = {"Table 1": ("t1_disp_max", "t1_disp_min"), "Table 2": ("t2_disp_max", "t2_disp_min")}
 
 
+def _forms(e: dict) -> str:
+    """An ensemble's whirl shapes for the report: "cylindrical 5 (72.9), conical 3 (79.3)"."""
+    return ", ".join(f"{k} {v['n']} ({_fmt(v['frequency_hz'])})" for k, v in (e.get("forms") or {}).items()) or "-"
+
+
 def orbit_readings(checks: list[dict]) -> list[dict]:
     """The vertical displacement max and min of each table read as the DE orbit's centre (max + min)
     / 2 and half-range (max - min) / 2, for the experiment, the paper's simulation and ours: a
@@ -444,6 +450,8 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
         """``margin`` / ``se``: the margin shown; ``also``: the verdict's other (margin, se) pairs. Any
         pair whose margin is inside its error flags the verdict within noise."""
         noisy = any(m is not None and e is not None and abs(m) < e for m, e in ((margin, se), *also))
+        if values.get("split_robust"):  # the median moves with the split, the verdict does not (_shapes)
+            noisy = False
         checks.append({"group": group, "check": name, "rule": rule, "pass": bool(ok), "margin": margin, "se": se,
                        "within_noise": noisy, **values})
 
@@ -456,6 +464,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
         bd = band(sim, exp)
         err = None if ours is None else ours - exp
         closer = None if err is None else abs(sim - exp) - abs(err)  # > 0: closer than the paper's simulation
+        shapes = _shapes(w, exp, bd) if table == "fig39" else []
         check("table", name, f"|ours - {exp * scale:g}| <= {bd * scale:.3g} {unit} (max of 10 % and the paper's "
               f"simulation error)", err is not None and abs(err) <= bd, margin=None if err is None else bd - abs(err),
               se=se, ours=ours, paper_simulated=sim, paper_experimental=exp, band=bd, unit=unit, scale=scale,
@@ -464,7 +473,8 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
               # whether "closer" is inside our standard error: the 10000 rpm frequency's median moves
               # between two locks from one install to another (78.8 Hz published, 73.0 on a fresh
               # install of session 24) and "closer" flipped with it
-              closer_margin=closer, closer_within_noise=bool(closer is not None and se is not None and abs(closer) < se))
+              closer_margin=closer, closer_within_noise=bool(closer is not None and se is not None and abs(closer) < se),
+              shapes=shapes, split_robust=_split_robust(shapes, err is not None and abs(err) <= bd))
 
     def classes(key, want, name, rule, where="landing"):
         w = _judged(s, ensembles, key)[0]
@@ -750,9 +760,53 @@ def _shown(path: str) -> str:
     return str(p.relative_to(root)) if p.is_relative_to(root) else path
 
 
+def _shapes(w: dict, exp: float, bd: float) -> list[dict]:
+    """The DE whirl's shapes in an ensemble (``ensemble_stats``' ``de["forms"]``), each with its
+    drops, median frequency, standard error and margin against the band ``bd`` around ``exp``."""
+    forms = (w.get("de") or {}).get("forms") or {}
+    return [{"form": k, "n": v["n"], "frequency_hz": v["frequency_hz"], "se": v.get("frequency_se_hz"),
+             "margin": bd - abs(v["frequency_hz"] - exp), "above": v["frequency_hz"] > exp} for k, v in forms.items()]
+
+
+def _split_robust(shapes: list[dict], ok: bool) -> bool:
+    """Whether a frequency verdict holds whatever share of the drops takes each whirl shape: the
+    drops split between two or more shapes (so the median moves with the split, and its standard
+    error is large), and every shape's median lies on the verdict's side of the band by more than its
+    own standard error (for a fail, all beyond the same edge). The median of all drops lies between
+    the shapes' medians, so no split can then move it across the band's edge. A shape of one drop
+    has no error and keeps the flag."""
+    if len(shapes) < 2 or any(sh["se"] is None for sh in shapes):
+        return False
+    if ok:  # the band is an interval: medians inside it keep every mix of them inside
+        return all(sh["margin"] > sh["se"] for sh in shapes)
+    # outside: only when all lie beyond the same edge (a mix of a low and a high shape could fall inside)
+    return len({sh["above"] for sh in shapes}) == 1 and all(-sh["margin"] > sh["se"] for sh in shapes)
+
+
+def shape_lines(checks: list[dict]) -> list[str]:
+    """The report's reading of a Fig. 39 row whose drops whirl on more than one shape: each shape's
+    drops, median and error against the experiment, and whether the verdict holds for any split."""
+    out = []
+    for c in checks:
+        if c.get("group") != "table" or len(c.get("shapes") or []) < 2:
+            continue
+        exp = c["paper_experimental"]
+        parts = [f"{sh['form']} in {sh['n']} drops at {_pm(sh['frequency_hz'], sh['se'], 1.0)} Hz "
+                 f"({_rel(sh['frequency_hz'], exp):+.1%})" for sh in c["shapes"]]
+        held = ("each shape lies within the band, so the verdict holds for any split of the drops between them"
+                if c["split_robust"] and c["pass"] else
+                "each shape lies beyond the same edge of the band, so the verdict holds for any split"
+                if c["split_robust"] else "the verdict hangs on the split between them")
+        out += ["", f"{c['check']}: the DE journal whirls on {len(parts)} shapes, " + "; ".join(parts)
+                + f" (cylindrical: the two journals go round together; conical: against each other). The median, "
+                f"{_fmt(c['ours'])} Hz, follows the share of drops on each; {held} (band {_fmt(c['band'])} Hz)."]
+    return out
+
+
 def _verdict(c: dict) -> str:
     rb = c.get("robust")
     return ("PASS" if c["pass"] else "FAIL") + (" (within noise: margin < s.e.)" if c.get("within_noise") else "") \
+        + (" (each whirl shape: see below)" if c.get("split_robust") else "") \
         + (f" (hangs on the fit's pick: {rb['passing']} of {rb['n']} designs within its noise pass)"
            if rb and not rb["holds"] else "")
 
@@ -868,6 +922,7 @@ def report_markdown(result: dict) -> str:
 
             lines.append(f"| {o['table']} | {cr(o['experimental'])} | {cr(o['paper_simulated'])} | {cr(o['ours'])} | "
                          f"{o['half_range_error']:+.0%} / {o['paper_half_range_error']:+.0%} |")
+    lines += shape_lines(ev["checks"])
     lines += ["", "## The paper's causes", "",
               "Each judged on the share of drops in the expected class; the margin of a class check is in drops "
               "(its standard error: binomial, sqrt(n p (1 - p)), p kept half a drop from 0 and 1).", "",
@@ -990,10 +1045,13 @@ def report_markdown(result: dict) -> str:
                   "(`whirl.landing_whirl_bearing`). Persistence: share of the time after onset spent whirling. "
                   "Locks: where the drops' whirl frequencies fall into groups more than "
                   f"{LOCK_GAP_HZ:g} Hz apart (rotor modes the whirl locked to), each group's median and its "
-                  "number of drops; the median of all drops then follows the split.", "",
+                  "number of drops; the median of all drops then follows the split. Shape: how the two journals go "
+                  "round over the whirl, together (cylindrical, phase within "
+                  f"{FORM_PHASE_DEG:g} deg) or against each other (conical), with each shape's drops and median "
+                  "frequency (`whirl.whirl_shape`).", "",
                   "| case | drops per class | majority | whirl found at | DE journal: drops per class | "
-                  "median frequency [Hz] (+/- s.e.) | median onset [s] | median persistence | centred drop |",
-                  "|---|---|---|---|---|---|---|---|---|"]
+                  "median frequency [Hz] (+/- s.e.) | shape: drops (median Hz) | median onset [s] | median persistence | centred drop |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         for key, e in ensembles.items():
             se = e.get("frequency_se_hz")
             f = _fmt(e["frequency_hz"]) + (f" +/- {se:.2g}" if se is not None and e["frequency_hz"] else "")
@@ -1006,7 +1064,7 @@ def report_markdown(result: dict) -> str:
             centred = "-" if cw is None else (f"{cw['direction']}{' ' + _fmt(cw['frequency_hz']) + ' Hz' if cw['frequency_hz'] else ''}"
                                               f"{' at ' + cw.get('bearing', 'DE') if cw['direction'] != 'none' else ''}")
             lines.append(f"| {key} | {', '.join(f'{k} {v}' for k, v in e['counts'].items())} | {e['direction']} | "
-                         f"{at} | {de} | {f} | {_fmt(e['onset_s'])} | "
+                         f"{at} | {de} | {f} | {_forms(e)} | {_fmt(e['onset_s'])} | "
                          f"{_fmt(e.get('persistence'), 100, 3) + ' %' if e.get('persistence') is not None else '-'} | {centred} |")
     lines += ["", "## Repeatability: which numbers are bitwise, which statistical", "",
               "On one machine and install every number here is bitwise repeatable: the solver is deterministic "

@@ -12,6 +12,8 @@ Public API
   ``f0`` shows R at ``+f0``).
 - :func:`whirl_analysis` : sliding-window detection of sustained whirl, its direction, frequency,
   onset time and orbit radius, returned as a :class:`WhirlResult`.
+- :func:`whirl_shape`    : the phase between two journals' whirl and the form it makes
+  (cylindrical or conical).
 
 Bad input raises :class:`rotorlanding.errors.InputError` (a ``ValueError``) naming the argument,
 its value and what is allowed.
@@ -25,7 +27,7 @@ import numpy as np
 
 from .errors import InputError
 
-__all__ = ["full_spectrum", "WhirlResult", "whirl_analysis", "landing_whirl_bearing", "landing_whirl", "default_window_s", "MIN_DIRECTIONALITY",
+__all__ = ["full_spectrum", "WhirlResult", "whirl_analysis", "whirl_shape", "FORM_PHASE_DEG", "landing_whirl_bearing", "landing_whirl", "default_window_s", "MIN_DIRECTIONALITY",
            "SPIN_TOLERANCE", "MIN_WINDOW_S", "WINDOW_SPIN_PERIODS"]
 
 #: A window only counts as whirling if its dominant component is at least this many times larger
@@ -581,3 +583,53 @@ def landing_whirl(whirl: dict) -> dict:
         return {"bearing": "DE", **whirl}
     name = landing_whirl_bearing(whirl["per_bearing"])
     return {**whirl["per_bearing"][name], "bearing": name, "per_bearing": whirl["per_bearing"]}
+
+
+# --------------------------------------------------------------------------------------------
+# whirl shape at two journals
+# --------------------------------------------------------------------------------------------
+#: |phase| between the two journals' whirl components up to this [deg]: they go round together
+#: (cylindrical form); from ``180 - FORM_PHASE_DEG`` on: against each other (conical); between:
+#: "mixed". 60 deg: a third of the way from one form to the other, so a form is named only where
+#: one shape clearly dominates.
+FORM_PHASE_DEG = 60.0
+
+
+def whirl_shape(t, y_ref, z_ref, y_other, z_other, *, frequency_hz: float, direction: str,
+                t0: float, t1: float) -> dict:
+    """The shape of a whirl seen at two journals: the phase of the other journal's whirl component
+    against the reference journal's, at the whirl frequency over ``[t0, t1]``, and the form it makes.
+
+    Why: a landed rotor can whirl on more than one shape at one speed. The rig's 10000 rpm combined
+    landing locks either with both journals going round together (cylindrical, 0.95 of the landed
+    forward mode) or against each other (conical, 1.03 of it: docs/calibration.md, session 27); the
+    conical form is stiffened by the disk's gyroscopic moment and rises faster with speed. A
+    frequency alone does not say which; the phase does.
+
+    Method: complex demodulation of each orbit ``w = y + i z`` at ``+f`` (forward) or ``-f``
+    (backward) under a Hann window over ``[t0, t1]``, ``c = sum(h w exp(-i 2 pi s f t))``; the
+    phase is ``angle(c_other conj(c_ref))`` in (-180, 180] deg and the amplitude ratio
+    ``|c_other| / |c_ref|``. A constant offset (the journal resting low) is removed first.
+
+    Returns ``{"phase_deg", "amplitude_ratio", "form"}``, form ``"cylindrical"`` (|phase| <=
+    :data:`FORM_PHASE_DEG`), ``"conical"`` (>= 180 - it) or ``"mixed"``.
+    """
+    if direction not in ("forward", "backward"):
+        raise InputError("direction", direction, "must be 'forward' or 'backward' (a whirl to take the shape of)")
+    f = _positive("frequency_hz", frequency_hz)
+    t_, w_ref, dt = _as_series(t, y_ref, z_ref)
+    _, w_oth, _ = _as_series(t, y_other, z_other)
+    sel = (t_ >= t0 - 0.5 * dt) & (t_ <= t1 + 0.5 * dt)
+    if int(sel.sum()) < _MIN_SAMPLES:
+        raise InputError("t0, t1", _Text(f"[{t0:.6g}, {t1:.6g}] s"),
+                         f"must span at least {_MIN_SAMPLES} samples of the record [{t_[0]:.6g}, {t_[-1]:.6g}] s")
+    s = 1.0 if direction == "forward" else -1.0
+    h = _window("hann", int(sel.sum()))
+    rot = np.exp(-2j * np.pi * s * f * t_[sel])
+    c = [np.sum(h * (w[sel] - w[sel].mean()) * rot) for w in (w_ref, w_oth)]
+    if abs(c[0]) == 0.0:
+        return {"phase_deg": None, "amplitude_ratio": None, "form": "mixed"}
+    phase = float(np.degrees(np.angle(c[1] * np.conj(c[0]))))
+    form = ("cylindrical" if abs(phase) <= FORM_PHASE_DEG else
+            "conical" if abs(phase) >= 180.0 - FORM_PHASE_DEG else "mixed")
+    return {"phase_deg": phase, "amplitude_ratio": float(abs(c[1]) / abs(c[0])), "form": form}

@@ -187,3 +187,24 @@ def test_the_de_journal_frequency_error_follows_its_locks_too():
           "de_frequency_hz": x} for x in f]
     de = ensemble_stats(m)["de"]
     assert de["frequency_se_hz"] == pytest.approx(bootstrap_median_se(f)) and len(de["frequency_locks"]) == 2
+
+
+def test_ensemble_counts_the_whirl_shapes_with_their_median_frequencies():
+    """Five cylindrical drops near 72.8 Hz and three conical near 79.4 Hz (the rig's 10000 rpm
+    landing, docs/calibration.md session 27): each shape gets its drops and median frequency; a calm
+    drop and a drop without a shape do not count."""
+    fw = [("cylindrical", f) for f in (72.7, 72.8, 72.9, 72.8, 72.6)] + [("conical", f) for f in (79.3, 79.4, 79.6)]
+    members = [{"direction": "forward", "frequency_hz": f, "onset_s": 0.07, "whirl_form": form} for form, f in fw]
+    members += [{"direction": "none", "frequency_hz": None, "onset_s": None, "whirl_form": None},
+                {"direction": "forward", "frequency_hz": 75.0, "onset_s": 0.07}]
+    st = ensemble_stats(members)
+    assert list(st["forms"]) == ["cylindrical", "conical"]  # most drops first
+    assert (st["forms"]["cylindrical"]["n"], st["forms"]["conical"]["n"]) == (5, 3)
+    assert st["forms"]["cylindrical"]["frequency_hz"] == pytest.approx(72.8)
+    assert st["forms"]["conical"]["frequency_hz"] == pytest.approx(79.4)
+    assert 0 < st["forms"]["conical"]["frequency_se_hz"] < 0.3  # within a shape the drops agree
+    assert "forms" not in ensemble_stats(members[-2:-1])  # nothing whirls: no shapes
+    # the DE journal's own shapes: members whose landing whirl is the DE's (the NDE's shape is not the DE's)
+    de = [{**m, "de_direction": m["direction"], "de_frequency_hz": m["frequency_hz"], "bearing": "DE"} for m in members]
+    de[0]["bearing"] = "NDE"
+    assert ensemble_stats(de)["de"]["forms"]["cylindrical"]["n"] == 4
