@@ -348,6 +348,10 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
                      **{f"{c}_de_{key}": de[c].get(name) for c in cases if de[c]
                         for key, name in (("direction", "direction"), ("hz", "frequency_hz"))},
                      **{f"{c}_de_forward": de[c]["counts"].get("forward", 0) for c in cases if de[c]},
+                     # its shapes (ensemble.ensemble_stats' de["forms"]): "cylindrical 5 72.70; conical 3
+                     # 79.30", one text per case so the table stays flat
+                     **{f"{c}_de_shapes": "; ".join(f"{k} {v['n']} {v['frequency_hz']:.2f}" for k, v in de[c]["forms"].items())
+                        for c in cases if de[c].get("forms")},
                      **{f"{c}_failed": results[i][c].get("failed", 0) for c in cases},
                      **{f"{c}_direction": results[i][c].get("direction") for c in cases},
                      **{f"{c}_hz": results[i][c].get("frequency_hz") for c in cases},

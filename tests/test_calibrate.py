@@ -330,3 +330,26 @@ def test_heldout_span_reads_the_drops_of_the_run_it_is_given(tmp_path):
         row.update({f"err_{c}": 0.01, f"err_{c}_se": 0.01, f"err_{c}_de": 0.0, f"err_{c}_de_se": 0.03})
     assert not hs.heldout([row], 3000, 16)["within_noise"][0]["pass"]  # 13 of 16 < 14
     assert hs.heldout([row], 3000, 8)["within_noise"][0]["pass"]
+
+
+def test_a_fit_records_the_de_whirl_shapes_per_case(tmp_path, monkeypatch):
+    """Each design's row says on which shapes its drops whirled at the DE (cylindrical, conical), with
+    their drops and median frequency: the 10000 rpm median follows that split (docs/calibration.md,
+    session 27)."""
+    from rotorlanding import calibrate_run as cal
+
+    forms = {"cylindrical": {"n": 5, "frequency_hz": 72.7}, "conical": {"n": 3, "frequency_hz": 79.3}}
+
+    def fake_run_all(jobs, workers):
+        return {i: {case.split("#")[0]: {"direction": "forward", "frequency_hz": 73.0, "fraction": 1.0,
+                                         "de": {"counts": {"forward": 8}, "direction": "forward",
+                                                "frequency_hz": 73.0, "forms": forms}}
+                    for i, case, *_ in jobs} for i, *_ in jobs}
+
+    monkeypatch.setattr(cal, "_run_all", fake_run_all)
+    space = tmp_path / "space.toml"
+    space.write_text('samples = 1\nseed = 1\ncases = ["fw10000"]\nensemble = 8\n'
+                     '[ranges]\n"rotor.disks.4.outer_diameter" = {min = 0.40, max = 0.49}\n')
+    cal.calibrate(space, tmp_path / "c", workers=1)
+    row = next(csv.DictReader(open(tmp_path / "c" / "calibration.csv")))
+    assert row["fw10000_de_shapes"] == "cylindrical 5 72.70; conical 3 79.30"
