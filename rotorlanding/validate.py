@@ -962,14 +962,16 @@ def report_markdown(result: dict) -> str:
                    "held-out fit another: different installs)"))
             lines.append(f"| {c['check']} | {c['rule']} | {c['ours']} | {_fmt(c['margin'])}{se} | {cm} | {span_txt} | "
                          f"{_verdict(c)} |")
-        lines += ["", "Why two speeds do not pin the rotor (`docs/calibration.md`, session 26; a study, not re-run "
-                  "here): the landed whirl follows the landed forward mode at 0.93-0.95 of it (at 10000 rpm most "
-                  "drops so, the others lock 3 % above it), and that mode rises from 7000 to 10000 rpm by at most "
-                  "16 % on every rotor screened within the bounds, against 18.5 % measured. A fit on 7000 and 10000 "
-                  "rpm trades the two errors "
-                  "along the main shaft, toward stiff shafts (42-44 mm) whose DE journal does not whirl at 3000 "
-                  "rpm. With 16 drops per speed the sets within the fits' noise stay as large: the designs tie in "
-                  "score."]
+        lines += ["", "Why two speeds do not pin the rotor (`docs/calibration.md`, sessions 26-27; studies, not re-run "
+                  "here): the landed whirl follows the landed forward mode at 0.93-0.95 of it, with both journals "
+                  "going round together (cylindrical) at 3000 and 7000 rpm on every design of the fit; at 10000 rpm "
+                  "some drops whirl conical instead (the journals against each other), about 3 % above the mode. "
+                  "The mode rises from 7000 to 10000 rpm by at most 16 % on every rotor screened within the bounds, "
+                  "against 18.5 % measured, so a fit on 7000 and 10000 rpm trades the two errors along the main "
+                  "shaft, toward stiff shafts (42-44 mm) whose DE journal does not whirl at 3000 rpm. With 16 drops "
+                  "per speed the sets within the fits' noise stay as large: the designs tie in score. Read conical "
+                  "at 10000 rpm (a reading the paper's data leave open), that fit would rank first designs whose DE "
+                  "whirls at 3000 rpm within 3 % of 48 Hz."]
     else:
         lines += ["Not run: no held-out fit in `scenarios/calibration/holdout/` (or another rig rotor was given)."]
     rig = [c for c in ev["checks"] if c["group"] == "rig"]
