@@ -193,8 +193,9 @@ def bearing_criteria(spec, b, t, s, limits: Limits, summary: dict) -> tuple[list
 def whirl_severity(t, summary: dict, clearance: dict | None = None) -> dict:
     """Whirl severity of a run from its summary: ``time_whirling_s`` (coast-down: the chunks
     classified as whirling; landing: persistence x (end - onset)) and, for a landing, the orbit
-    amplitude over the radial clearance of the whirling bearing (``amplitude_over_clearance``);
-    {} when the summary has no whirl record."""
+    amplitude over the radial clearance of the whirling bearing (``amplitude_over_clearance``) and
+    the whirl's shape (``shape``: cylindrical or conical, ``whirl.whirl_shape``) where the summary has
+    it; {} when the summary has no whirl record."""
     out = {}
     if "whirl_phases" in summary:  # coast-down: per-chunk phases
         out["time_whirling_s"] = float(sum(ph["t_end_s"] - ph["t_start_s"] for ph in summary["whirl_phases"]
@@ -209,6 +210,8 @@ def whirl_severity(t, summary: dict, clearance: dict | None = None) -> dict:
             c = (clearance or {}).get(w.get("bearing"))
             if w.get("amplitude_m") is not None and c:
                 out["amplitude_over_clearance"] = float(w["amplitude_m"]) / c
+            if (w.get("shape") or {}).get("form"):  # cylindrical or conical: which way the rotor goes round
+                out["shape"] = w["shape"]["form"]
     return out
 
 

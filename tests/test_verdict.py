@@ -175,6 +175,12 @@ def test_whirl_severity_and_peak_force_are_reported_and_judged_when_limited(spec
     assert force["value"] == 1500.0 and rows[("peak contact force", "NDE")]["value"] == 900.0
     assert not any(c["judged"] for c in (tw, orbit, force)) and v["verdict"] == "pass"
     assert "| reported |" in vd.markdown(v)
+    assert "shape" not in rows[("whirl", "DE")]["dominant"]  # a summary without the whirl's shape
+    shaped = {**summary, "whirl": {**summary["whirl"], "shape": {"against": "NDE", "phase_deg": 170.0,
+                                                                "amplitude_ratio": 1.1, "form": "conical"}}}
+    v_sh = vd.evaluate(spec, t, s, shaped, Limits(whirl_acceptable_below_rpm=1e4))
+    assert next(c for c in v_sh["criteria"] if c["criterion"] == "whirl")["dominant"]["shape"] == "conical"
+    assert "shape conical" in vd.markdown(v_sh)
     strict = Limits(whirl_acceptable_below_rpm=1e4, whirl_time_s=0.1, whirl_orbit_over_clearance=0.8,
                     contact_force_n=1000.0)
     v2 = vd.evaluate(spec, t, s, summary, strict)
