@@ -42,8 +42,9 @@ def _offset(r: float, a: float) -> list[str]:
 def member_result(summary: dict) -> dict:
     """The numbers of one landing (a run summary) that ensemble statistics and calibration use:
     the landing's whirl (``whirl.landing_whirl_bearing``: the DE's, or another bearing's when
-    only that one whirls), where it was found, its shape (``whirl_form``), the DE vertical displacement and force ranges, and
-    the DE inner race's speed over the rotor's at the end (``race_to_rotor``)."""
+    only that one whirls), where it was found, its shape (``whirl_form``), the DE vertical
+    displacement and force ranges, and the DE inner race's speed over the rotor's at the end
+    (``race_to_rotor``)."""
     w = landing_whirl(summary["whirl"])
     name = "DE" if "DE" in summary["bearings"] else next(iter(summary["bearings"]))  # else the first bearing
     de = summary["bearings"][name]

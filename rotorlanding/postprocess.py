@@ -111,7 +111,8 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
     name = landing_whirl_bearing(whirls)
     out = {
         "scenario": sc.name,
-        "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls, **_shape(t, series, [b.name for b in spec.bearings], name, whirls[name])},
+        "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls,
+                  **_shape(t, series, [b.name for b in spec.bearings], name, whirls[name])},
         "bearings": bearings,
         "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
                    "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},

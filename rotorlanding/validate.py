@@ -24,10 +24,10 @@ import time
 from pathlib import Path
 
 from .ensemble import LOCK_GAP_HZ, drop_offsets, ensemble_stats, member_result, share_se
-from .whirl import FORM_PHASE_DEG
 from .errors import InputError
 from .runner import run_all, warm_model
 from .safeio import WriteError, atomic_write_text, save_figure
+from .whirl import FORM_PHASE_DEG
 
 
 def project_root() -> Path:

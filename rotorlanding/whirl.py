@@ -602,9 +602,10 @@ def whirl_shape(t, y_ref, z_ref, y_other, z_other, *, frequency_hz: float, direc
 
     Why: a landed rotor can whirl on more than one shape at one speed. The rig's 10000 rpm combined
     landing locks either with both journals going round together (cylindrical, 0.95 of the landed
-    forward mode) or against each other (conical, 1.03 of it: docs/calibration.md, session 27); the
-    conical form is stiffened by the disk's gyroscopic moment and rises faster with speed. A
-    frequency alone does not say which; the phase does.
+    forward mode) or against each other (conical, 1.03 of it: docs/calibration.md, session 27). A
+    conical whirl tilts the rotor's disks, whose gyroscopic moments stiffen a forward whirl as the
+    speed rises, so the two shapes move apart with speed. A frequency alone does not say which
+    shape; the phase does.
 
     Method: complex demodulation of each orbit ``w = y + i z`` at ``+f`` (forward) or ``-f``
     (backward) under a Hann window over ``[t0, t1]``, ``c = sum(h w exp(-i 2 pi s f t))``; the
