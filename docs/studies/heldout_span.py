@@ -68,6 +68,8 @@ def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
         err = (hz - f_exp) / f_exp if hz and r.get(f"{case}_de_direction") == "forward" else None
         preds.append({"design": r["design"], **{k: r[k] for k in KEYS}, "score": r["score"], "score_se": r["score_se"],
                       "de_forward": fwd, "de_hz": hz, "error": err,
+                      # the DE whirl's shapes at the held-out speed (calibrate's rows since session 27)
+                      "de_shapes": r.get(f"{case}_de_shapes"),
                       # validate's held-out rule: the share of drops of its class checks, and the band
                       "pass": bool(err is not None and abs(err) <= HELDOUT_BAND and fwd >= class_need(drops))})
     return {"rpm": rpm, "fitted_on": fit, "experiment_hz": f_exp, "first": scored[0]["design"],
@@ -81,20 +83,23 @@ def report(res: list[dict], drops: int, source: str, n: int) -> str:
              "the difference), and what each predicts at the held-out speed from the same fit's landings there "
              f"({drops} drops; validate lands 16 on the first design). Pass: DE forward in >= "
              f"{class_need(drops)} of {drops} and within "
-             f"{100 * HELDOUT_BAND:g} % of the experiment.", ""]
+             f"{100 * HELDOUT_BAND:g} % of the experiment. Shapes: the DE whirl's at the held-out speed, cylindrical "
+             "(both journals going round together) or conical (against each other), with drops and median frequency "
+             "(`whirl.whirl_shape`; recorded by calibrate since session 27).", ""]
     for h in res:
         p = h["within_noise"]
         lines += [f"## Held out {h['rpm']} rpm (experiment {h['experiment_hz']:g} Hz): "
                   f"{h['passing']} of {len(p)} designs within the fit's noise pass", "",
                   f"Fitted on {' + '.join(h['fitted_on'])}; first design {h['first']}.", "",
-                  "| design | shaft [mm] | disk [mm] | fit score +/- s.e. | DE forward | DE whirl [Hz] | error | verdict |",
-                  "|---|---|---|---|---|---|---|---|"]
+                  "| design | shaft [mm] | disk [mm] | fit score +/- s.e. | DE forward | DE whirl [Hz] | error | "
+                  "shapes: drops, median Hz | verdict |",
+                  "|---|---|---|---|---|---|---|---|---|"]
         for q in p:
             hz = "-" if q["de_hz"] is None else f"{q['de_hz']:.1f}"
             err = "-" if q["error"] is None else f"{100 * q['error']:+.1f} %"
             lines.append(f"| {q['design']} | {1e3 * q[KEYS[0]]:.2f} | {1e3 * q[KEYS[1]]:.1f} | "
                          f"{q['score']:.3f} +/- {q['score_se']:.3f} | {q['de_forward']} of {drops} | {hz} | {err} | "
-                         f"{'PASS' if q['pass'] else 'FAIL'} |")
+                         f"{q.get('de_shapes') or '-'} | {'PASS' if q['pass'] else 'FAIL'} |")
         errs = [q["error"] for q in p if q["error"] is not None]
         if errs:
             lines += ["", f"Prediction band over these designs: {100 * min(errs):+.1f} % to {100 * max(errs):+.1f} %."]
