@@ -281,7 +281,8 @@ class Sweep:
         table: the rows of ``sweep.csv`` as a list of dicts, one per case: ``case``, the swept
             keys, ``status`` ("ok" / "failed"), ``error``, ``whirl_direction``,
             ``whirl_frequency_hz`` [Hz], ``whirl_onset_s``, ``whirl_end_s`` [s],
-            ``whirl_persistence`` [-], ``whirl_bearing``, per bearing
+            ``whirl_persistence`` [-], ``whirl_bearing``, ``whirl_shape`` (cylindrical / conical /
+            mixed, empty when calm), per bearing
             ``<b>_max_contact_force_n`` [N], ``<b>_vertical_min_m``, ``<b>_vertical_max_m`` [m],
             ``final_rotor_rpm`` [rpm], ``energy_dissipated_j`` [J], ``wall_s`` [s]; numbers as
             int / float (the CSV's text read back exactly), empty cells None

@@ -62,7 +62,7 @@ from .safeio import atomic_write_text, save_figure
 from .whirl import landing_whirl
 
 CSV_FIELDS = ["case", "status", "error", "whirl_direction", "whirl_frequency_hz", "whirl_onset_s",
-              "whirl_end_s", "whirl_persistence", "whirl_bearing",
+              "whirl_end_s", "whirl_persistence", "whirl_bearing", "whirl_shape",
               # per bearing of the sweep's scenario, in its order (BEARING_FIELDS), then:
               "final_rotor_rpm", "energy_dissipated_j", "wall_s"]
 #: summary value of each bearing -> CSV column suffix (the column is <bearing>_<suffix>)
@@ -73,7 +73,8 @@ BEARING_FIELDS = {"max_contact_force_n": lambda sb: sb.get("max_contact_force_n"
 
 def csv_fields(bearing_names) -> list[str]:
     per = [f"{b}_{k}" for b in bearing_names for k in BEARING_FIELDS]
-    return CSV_FIELDS[:9] + per + CSV_FIELDS[9:]
+    i = CSV_FIELDS.index("whirl_shape") + 1
+    return CSV_FIELDS[:i] + per + CSV_FIELDS[i:]
 
 
 def load_sweep(path) -> dict:
@@ -209,6 +210,8 @@ def summary_row(s: dict) -> dict:
     return {"_bearings": list(b), "whirl_direction": w["direction"], "whirl_frequency_hz": w["frequency_hz"],
             "whirl_onset_s": w["onset_s"], "whirl_end_s": w.get("end_s"), "whirl_persistence": w.get("persistence"),
             "whirl_bearing": w["bearing"] if w["direction"] != "none" else None,
+            # cylindrical / conical (whirl.whirl_shape); empty for a case summarised before session 27
+            "whirl_shape": (w.get("shape") or {}).get("form") if w["direction"] != "none" else None,
             **{f"{name}_{k}": get(sb) for name, sb in b.items() for k, get in BEARING_FIELDS.items()},
             "final_rotor_rpm": s["speeds"]["final_rotor_rpm"],
             "energy_dissipated_j": s["energy"]["dissipated_total_j"]}

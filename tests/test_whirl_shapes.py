@@ -59,3 +59,18 @@ def test_the_run_summary_names_the_whirl_shape():
     assert "shape cylindrical: the NDE journal +14 deg from it, 1.27 x its component" in text
     del w["shape"]
     assert "shape" not in format_summary({"scenario": "x", "whirl": {**w, "per_bearing": {"DE": w}}})
+
+
+def test_the_sweep_table_has_the_whirl_shape():
+    from rotorlanding.sweep_run import csv_fields, summary_row
+
+    cols = csv_fields(["DE", "NDE"])
+    assert cols.index("whirl_bearing") + 1 == cols.index("whirl_shape") < cols.index("DE_max_contact_force_n")
+    w = {"direction": "forward", "frequency_hz": 79.3, "onset_s": 0.07, "end_s": 1.0, "persistence": 1.0,
+         "amplitude_m": 3e-4, "bearing": "DE",
+         "shape": {"against": "NDE", "phase_deg": 176.0, "amplitude_ratio": 1.2, "form": "conical"}}
+    s = {"whirl": {**w, "per_bearing": {"DE": w}}, "bearings": {}, "speeds": {"final_rotor_rpm": 9970.0},
+         "energy": {"dissipated_total_j": 1.0}}
+    assert summary_row(s)["whirl_shape"] == "conical"
+    old = {**s, "whirl": {k: v for k, v in s["whirl"].items() if k != "shape"}}  # summarised before the shape
+    assert summary_row(old)["whirl_shape"] is None
