@@ -64,15 +64,16 @@ def uniform(t: np.ndarray, *arrays: np.ndarray):
     return (tu,) + tuple(np.interp(tu, t, a) for a in arrays)
 
 
-def _shape(t, series: dict, names: list[str], name: str, w: dict) -> dict:
+def _shape(orbits: dict, name: str, w: dict) -> dict:
     """``{"shape": ...}``: the landing whirl's shape against the other journal
-    (:func:`rotorlanding.whirl.whirl_shape`) over its whirl phase, for a rotor on two catcher
-    bearings (``names``) that whirls; ``{}`` otherwise (one bearing, or no whirl to take a shape of)."""
-    others = [b for b in names if b != name]
-    if w["direction"] == "none" or len(others) != 1 or w.get("onset_s") is None:
+    (:func:`rotorlanding.whirl.whirl_shape`) over its whirl phase, from the uniformly resampled
+    orbits the whirl analysis used (``orbits``: bearing -> (t, y, z)), for a rotor on two catcher
+    bearings that whirls; ``{}`` otherwise (one bearing, or no whirl to take a shape of)."""
+    others = [b for b in orbits if b != name]
+    if w["direction"] == "none" or len(others) != 1 or name not in orbits or w.get("onset_s") is None:
         return {}
     o = others[0]
-    tu, y, z, yo, zo = uniform(t, series[name + "_y_m"], series[name + "_z_m"], series[o + "_y_m"], series[o + "_z_m"])
+    (tu, y, z), (_, yo, zo) = orbits[name], orbits[o]
     t1 = w["end_s"] if w.get("end_s") is not None else tu[-1]
     try:
         sh = whirl_shape(tu, y, z, yo, zo, frequency_hz=w["frequency_hz"], direction=w["direction"],
@@ -87,6 +88,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
     t_drop = sc.amb.t_drop if t_drop is None else t_drop
     bearings = {}
     whirls = {}
+    orbits = {}  # bearing -> the uniform (t, y, z) the whirl analysis read, for the whirl's shape
     for b in spec.bearings:
         pre = b.name + "_"
         y, z = series[pre + "y_m"], series[pre + "z_m"]
@@ -104,6 +106,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
         }
         try:
             tu, yu, zu, spin_rpm = uniform(t, y, z, series["rotor_speed_rpm"])
+            orbits[b.name] = (tu, yu, zu)
             wr = whirl_analysis(tu, yu, zu, clearance=b.params.clearance, spin_hz=spin_rpm / 60.0, t_start=t_drop)
             whirls[b.name] = wr.to_dict()
         except ValueError as err:  # record too short for the analysis window
@@ -112,7 +115,7 @@ def summarize(spec: LandingSpec, t: np.ndarray, series: dict, *, t_drop: float |
     out = {
         "scenario": sc.name,
         "whirl": {**whirls[name], "bearing": name, "per_bearing": whirls,
-                  **_shape(t, series, [b.name for b in spec.bearings], name, whirls[name])},
+                  **_shape(orbits, name, whirls[name])},
         "bearings": bearings,
         "speeds": {"initial_rotor_rpm": sc.speed_rpm, "final_rotor_rpm": float(series["rotor_speed_rpm"][-1]),
                    "final_inner_race_rpm": {b.name: bearings[b.name]["final_race_speed_rpm"] for b in spec.bearings}},

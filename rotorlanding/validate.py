@@ -281,7 +281,7 @@ TABLE_ROWS = [
 ORBIT_ROWS = {"Table 1": ("t1_disp_max", "t1_disp_min"), "Table 2": ("t2_disp_max", "t2_disp_min")}
 
 
-def _forms(e: dict) -> str:
+def _forms_text(e: dict) -> str:
     """An ensemble's whirl shapes for the report: "cylindrical 5 (72.9), conical 3 (79.3)"."""
     return ", ".join(f"{k} {v['n']} ({_fmt(v['frequency_hz'])})" for k, v in (e.get("forms") or {}).items()) or "-"
 
@@ -1066,7 +1066,7 @@ def report_markdown(result: dict) -> str:
             centred = "-" if cw is None else (f"{cw['direction']}{' ' + _fmt(cw['frequency_hz']) + ' Hz' if cw['frequency_hz'] else ''}"
                                               f"{' at ' + cw.get('bearing', 'DE') if cw['direction'] != 'none' else ''}")
             lines.append(f"| {key} | {', '.join(f'{k} {v}' for k, v in e['counts'].items())} | {e['direction']} | "
-                         f"{at} | {de} | {f} | {_forms(e)} | {_fmt(e['onset_s'])} | "
+                         f"{at} | {de} | {f} | {_forms_text(e)} | {_fmt(e['onset_s'])} | "
                          f"{_fmt(e.get('persistence'), 100, 3) + ' %' if e.get('persistence') is not None else '-'} | {centred} |")
     lines += ["", "## Repeatability: which numbers are bitwise, which statistical", "",
               "On one machine and install every number here is bitwise repeatable: the solver is deterministic "
