@@ -365,7 +365,12 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
                          "bw_v_disp_max_m": (results[i]["bw"].get("v_disp_range_m") or [None, None])[1]}
                         if "bw" in cases and sp["ensemble"] > 1 else {}),
                      **({f"{c}_fraction": results[i][c].get("fraction") for c in cases} if sp["ensemble"] > 1
-                        else {})})
+                        else {}),
+                     # Table 2's DE numbers (median peaks over the drops, forces on the rotor, positive up),
+                     # recorded unscored so that a study can ask what they say of the designs
+                     **{f"{c}_v_{q}_{end}_{u}": results[i][c][f"v_{q}_range_{u}"][j]
+                        for c in cases for q, u in (("disp", "m"), ("force", "n"))
+                        if results[i][c].get(f"v_{q}_range_{u}") for j, end in ((0, "min"), (1, "max"))}})
     rows.sort(key=lambda r: r["score"])
     # verify the best designs at half the step, batch after batch, until one has converged
     n = sp["verify_top"]

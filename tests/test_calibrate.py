@@ -353,3 +353,34 @@ def test_a_fit_records_the_de_whirl_shapes_per_case(tmp_path, monkeypatch):
     cal.calibrate(space, tmp_path / "c", workers=1)
     row = next(csv.DictReader(open(tmp_path / "c" / "calibration.csv")))
     assert row["fw10000_de_shapes"] == "cylindrical 5 72.70; conical 3 79.30"
+
+
+def test_a_fit_records_table2s_de_numbers_per_case_unscored(tmp_path, monkeypatch):
+    """Each row carries the case's median DE displacement and force peaks (Table 2's numbers, forces
+    on the rotor), and the score does not read them (score_force = false keeps them predictions)."""
+    from rotorlanding import calibrate_run as cal
+
+    def fake_run_all(jobs, workers):
+        base = {"direction": "forward", "frequency_hz": 65.0, "fraction": 1.0,
+                "de": {"counts": {"forward": 8}, "direction": "forward", "frequency_hz": 65.0}}
+        out = {}
+        for i, case, *_ in jobs:
+            k = 1.0 + i  # a design's numbers differ, so a mix-up between rows would show
+            out.setdefault(i, {})[case.split("#")[0]] = {
+                **base, "v_disp_range_m": [-3e-4 * k, 1.5e-4 * k], "v_force_range_n": [-500.0 * k, 4500.0 * k]}
+        return out
+
+    monkeypatch.setattr(cal, "_run_all", fake_run_all)
+    space = tmp_path / "space.toml"
+    space.write_text('samples = 2\nseed = 1\ncases = ["fw7000"]\nensemble = 8\nscore_force = false\n'
+                     '[ranges]\n"rotor.disks.4.outer_diameter" = {min = 0.40, max = 0.49}\n')
+    rows = cal.calibrate(space, tmp_path / "c", workers=1)
+    for r in rows:
+        k = 1.0 + r["design"]
+        assert r["fw7000_v_disp_min_m"] == pytest.approx(-3e-4 * k)
+        assert r["fw7000_v_disp_max_m"] == pytest.approx(1.5e-4 * k)
+        assert r["fw7000_v_force_min_n"] == pytest.approx(-500.0 * k)
+        assert r["fw7000_v_force_max_n"] == pytest.approx(4500.0 * k)
+        assert "err_force" not in r
+    # same frequency and share on both designs: equal scores although their forces differ
+    assert rows[0]["score"] == rows[1]["score"]
