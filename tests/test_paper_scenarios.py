@@ -399,6 +399,21 @@ def test_ribbon_modal_shift_is_the_ribbon_share_of_the_mode_strain_energy():
     assert rm["modes_hz"][0.5] < rm["modes_hz"][1.0] < rm["modes_hz"][1.5]
     assert rm["support_n_m"][1.0] == pytest.approx(space["support_stiffness"])
     assert 0.0 < rm["ribbon_energy_share"] < 0.3 and abs(rm["shift"][1.5]) < 0.10 and abs(rm["shift"][0.5]) < 0.10
+    # the forward modes listed per factor hold the matched one, ascending, and a next one above it
+    for f, modes in rm["forward_modes_hz"].items():
+        assert modes == sorted(modes) and rm["modes_hz"][f] in modes and modes[-1] > rm["modes_hz"][f]
+
+
+def test_ribbon_mode_changes_names_a_whirl_that_left_the_matched_mode():
+    """A ribbon variant's landed whirl nearer another landed forward mode than the matched one is a
+    mode change (the report says so); one near the matched mode, or a variant without a whirl, is not."""
+    from rotorlanding.validate import ribbon_mode_changes
+
+    rm = {"modes_hz": {0.5: 64.0, 1.5: 66.0}, "forward_modes_hz": {0.5: [40.0, 64.0, 95.0], 1.5: [41.0, 66.0, 97.0]}}
+    assert ribbon_mode_changes(rm, {0.5: 62.5, 1.5: 96.5}) == {1.5: (96.5, 97.0, 66.0)}
+    assert ribbon_mode_changes(rm, {0.5: 62.5, 1.5: 64.0}) == {}
+    assert ribbon_mode_changes(rm, {0.5: None, 1.5: 70.0}) == {}
+    assert ribbon_mode_changes({"modes_hz": {1.5: 66.0}}, {1.5: 96.5}) == {}  # no mode list: nothing claimed
 
 
 def test_holdout_sets_read_the_landing_fit_before_the_modal_fit(tmp_path, monkeypatch):
