@@ -1051,8 +1051,9 @@ def report_markdown(result: dict) -> str:
                       "ribbon carries at least about 30 % (x0.5) or 47 % (x1.5) of the mode's strain energy."]
             if moved:
                 lines[-1] += (" So the ribbon does not move the mode; it can move the whirl to another mode: "
-                              + "; ".join(f"with K_rib x{f:g} the whirl ({hz:.1f} Hz) lies at the next landed forward "
-                                          f"mode, {near:.1f} Hz, not at the one the base whirl follows ({m:.1f} Hz)"
+                              + "; ".join(f"with K_rib x{f:g} the whirl ({hz:.1f} Hz) is nearest another landed forward "
+                                          f"mode, {near:.1f} Hz ({hz / near:.2f} of it), not the one the base whirl "
+                                          f"follows ({m:.1f} Hz)"
                                           for f, (hz, near, m) in sorted(moved.items()))
                               + ". The check counts that shift: the whirl's frequency is what the paper says the "
                               "ribbon influences.")
