@@ -59,7 +59,7 @@ RIG_TEXT = RIG.read_text()
 
 @pytest.mark.parametrize("mutate, field, value", [
     (lambda s: s.replace("density = 7850.0", ""), "rotor.materials.steel.density", "None"),
-    (lambda s: s.replace("length = 0.115 ", "length = -0.115 ", 1), "rotor.sections[0].length", "-0.115"),
+    (lambda s: s.replace("length = 0.1287 ", "length = -0.1287 ", 1), "rotor.sections[0].length", "-0.1287"),
     (lambda s: s.replace("outer_diameter = 0.0596", "outer_diameter = -0.0596", 1), "rotor.sections[1].outer_diameter", "-0.0596"),
     (lambda s: s.replace("density = 7850.0", "density = -7850.0"), "rotor.materials.steel.density", "-7850.0"),
     (lambda s: s.replace('material = "steel"\nelements = 4', 'inner_diameter = 0.09\nmaterial = "steel"\nelements = 4', 1),

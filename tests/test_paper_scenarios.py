@@ -42,14 +42,15 @@ def test_combined_landing_whirls_forward_and_axial_rub_is_the_cause_short():
 
 
 def test_combined_landing_at_3000rpm_whirls_forward_at_the_thrust_face_bearing_short():
-    """At 3000 rpm the thrust-face friction drives the NDE journal round its clearance at about
-    0.93 x spin while the loaded DE journal stays down: the landing whirls forward (Fig. 39's
-    48 Hz), found at the NDE; without axial rub it does not."""
-    s = _whirl("forward_whirl_3000rpm.toml", 0.4)
-    nde = s["whirl"]["per_bearing"]["NDE"]
-    assert nde["direction"] == "forward" and 40.0 < nde["frequency_hz"] < 50.0, nde
+    """At 3000 rpm the thrust-face friction drives the rotor round its clearances: the landing whirls
+    forward near Fig. 39's 48 Hz, at the DE journal where the paper measured (on the session-28 rotor;
+    on the session-15 rotor the centred drop whirled at the NDE only), both journals together; without
+    axial rub it does not. 0.8 s: the whirl starts at 0.3-0.6 s on this rotor."""
+    s = _whirl("forward_whirl_3000rpm.toml", 0.8)
+    de = s["whirl"]["per_bearing"]["DE"]
+    assert de["direction"] == "forward" and 44.0 < de["frequency_hz"] < 52.0, de
     assert s["whirl"]["direction"] == "forward", s["whirl"]
-    off = _whirl("forward_whirl_3000rpm.toml", 0.4, ["effects.axial_rub=false"])
+    off = _whirl("forward_whirl_3000rpm.toml", 0.8, ["effects.axial_rub=false"])
     assert all(w["direction"] != "forward" for w in off["whirl"]["per_bearing"].values()), off["whirl"]
 
 

@@ -23,12 +23,18 @@ STEP = 1e-5
 JOURNAL_TOL = 3e-6          # m
 
 
+#: the combined drop at half the step: on the session-28 rig rotor its DE journal's second impact (35-46 ms)
+#: amplifies the step's error; at 1e-5 s the journals differ from the reference by 4.0 um, at 5e-6 s by 1.2 um
+#: (3.4x less for half the step: the integrator's order, so the equations agree and the step sets the rest)
+CASE_STEP = {"radial": STEP, "combined": STEP / 2}
+
+
 @pytest.mark.parametrize("case, sets", [
     ("radial", []),
     ("combined", ["axial.f_thrust=4000.0", "amb.drop_axial=true"]),
 ])
 def test_exudyn_matches_independent_reference(case, sets):
-    sc = load_scenario(SCEN, sets + [f"solver.step={STEP}", "solver.output_period=1e-4"])
+    sc = load_scenario(SCEN, sets + [f"solver.step={CASE_STEP[case]}", "solver.output_period=1e-4"])
     spec = build_spec(sc)
     model = build_exudyn(spec)
     ok, msg, _ = solve(model, 0.0, T_END, SolverSettings.from_spec(spec))

@@ -31,7 +31,9 @@ def _compare(sets, step):
     ("combined", ["axial.f_thrust=4000.0", "amb.drop_axial=true"]),
 ])
 def test_journal_motion_agrees(case, sets):
-    spec, t, q, v, qr, vr = _compare(sets, 1e-5)
+    # the combined drop at half the step: on the session-28 rig rotor its DE journal's second impact
+    # (35-46 ms) amplifies the step's error (4.0 um at 1e-5 s, 1.2 um at 5e-6 s: the integrator's order)
+    spec, t, q, v, qr, vr = _compare(sets, 1e-5 if case == "radial" else 5e-6)
     for b in spec.bearings:
         s = b.i_station
         err = np.max(np.hypot(q[:, s] - qr[:, s], q[:, s + 1] - qr[:, s + 1]))

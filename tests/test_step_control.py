@@ -69,8 +69,11 @@ def _peak_and_range(spec, t, q, v):
 def test_auto_step_moves_the_step_and_agrees_with_a_finer_fixed_step():
     """The radial landing's first impacts (0.1 s): the controller must change the step (rejecting
     some), keep the output grid of the fixed step, and give the peak contact force within 5 % and
-    the vertical displacement range within 2 % of a fixed step 4x finer than the rig's."""
-    spec, t, q, v, info = simulate(_scenario(step_control="auto", step_tolerance=1e-7), progress=False)
+    the vertical displacement range within 2 % of a fixed step 4x finer than the rig's.
+    At 2.5e-8 m: on the session-28 rig rotor the default 1e-7 m leaves the range 3.0 % short (278.5
+    against 287.1 um; fixed steps 5e-5 ... 6.25e-6 s agree within 0.12 %), 2.5e-8 m 0.4 %
+    (docs/performance.md, session 28)."""
+    spec, t, q, v, info = simulate(_scenario(step_control="auto", step_tolerance=2.5e-8), progress=False)
     assert info["complete"]
     assert info["rejected_steps"] > 0
     # a rejection must really repeat the step: Exudyn's step count is the accepted ones only (with
@@ -82,7 +85,7 @@ def test_auto_step_moves_the_step_and_agrees_with_a_finer_fixed_step():
     from rotorlanding.run import build_summary
 
     info.update(simulated_s=float(t[-1]))
-    _, summary = build_summary(_scenario(step_control="auto", step_tolerance=1e-7), spec, t, q, v, info)
+    _, summary = build_summary(_scenario(step_control="auto", step_tolerance=2.5e-8), spec, t, q, v, info)
     assert summary["performance"]["step_control"] == "auto"
     assert summary["performance"]["rejected_steps"] == info["rejected_steps"]
     peak, disp, energy = _peak_and_range(spec, t, q, v)
