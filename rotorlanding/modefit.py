@@ -118,20 +118,28 @@ def rotor_with(rotor_data: dict, values: dict, support_stiffness: float | None =
     return data
 
 
-def matched_modes(rotor_data: dict, speeds_rpm, targets_hz, direction: str = "forward") -> list[float]:
-    """At each speed, the frequency [Hz] of the mode of ``direction`` nearest to the target (at
-    standstill, where modes have no whirl sense, the nearest mode)."""
+def whirl_modes(rotor_data: dict, speeds_rpm, direction: str = "forward") -> list[list[float]]:
+    """At each speed, the frequencies [Hz] of the rotor's modes of ``direction`` (and those without a
+    whirl sense, as at standstill), ascending; the rotor assembled once."""
     from .modal import modal_analysis
     from .reduction import full_model
     from .rotor import rotor_from_dict
     from .timoshenko import assemble
 
     system = full_model(assemble(rotor_from_dict(rotor_data))).with_supports()
-    out = []
-    for sp, ft in zip(speeds_rpm, targets_hz):
-        fs = [m.frequency_hz for m in modal_analysis(system, sp).modes if m.whirl in (direction, "none")]
-        out.append(min(fs, key=lambda f: abs(f - ft)) if fs else float("nan"))
-    return out
+    return [sorted(m.frequency_hz for m in modal_analysis(system, sp).modes if m.whirl in (direction, "none"))
+            for sp in speeds_rpm]
+
+
+def nearest(freqs_hz, target_hz: float) -> float:
+    """The frequency of ``freqs_hz`` nearest to the target (nan when there is none)."""
+    return min(freqs_hz, key=lambda f: abs(f - target_hz)) if freqs_hz else float("nan")
+
+
+def matched_modes(rotor_data: dict, speeds_rpm, targets_hz, direction: str = "forward") -> list[float]:
+    """At each speed, the frequency [Hz] of the mode of ``direction`` nearest to the target (at
+    standstill, where modes have no whirl sense, the nearest mode)."""
+    return [nearest(fs, ft) for fs, ft in zip(whirl_modes(rotor_data, speeds_rpm, direction), targets_hz)]
 
 
 def round_sig(x: float, digits: int = 4) -> float:

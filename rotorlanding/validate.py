@@ -688,15 +688,16 @@ def _ribbon_key(field: str, factor: float) -> str:
 
 def ribbon_modal_shift(rig=None, factors=(0.5, 1.0, 1.5), speed_rpm: float = 7000.0) -> dict | None:
     """Why the ribbon check moves so little, computed without a landing: the landed forward mode the
-    7000 rpm whirl locks to (``modefit.matched_modes`` on the rig rotor, every sleeve on the fit's
-    support stiffness: the paper's K_rib in series with the ball set and Hertz contact), with K_rib
+    7000 rpm whirl locks to (the mode nearest the fit's target among ``modefit.whirl_modes`` of the rig
+    rotor, every sleeve on the fit's support stiffness: the paper's K_rib in series with the ball set
+    and Hertz contact), with K_rib
     scaled by each factor and the rest of the series chain kept. For a chain of springs, 2 d ln f /
     d ln K_rib is about the share of the mode's strain energy in the ribbon (Rayleigh; gyroscopic
     terms aside), so the shift says how much of the mode the ribbon carries. None for a rig overlay
     (the fit space is the rig rotor's)."""
     if rig is not None:
         return None
-    from .modefit import load_space, matched_modes, rotor_with
+    from .modefit import load_space, nearest, rotor_with, whirl_modes
     from .scenario import load_scenario
 
     space = load_space(project_root() / "scenarios" / "calibration" / "rotor_modes.toml")
@@ -713,28 +714,16 @@ def ribbon_modal_shift(rig=None, factors=(0.5, 1.0, 1.5), speed_rpm: float = 700
     for f in factors:
         ks = 1.0 / (1.0 / (f * k_rib) + 1.0 / k_rest)
         out["support_n_m"][f] = ks
-        data = rotor_with(space["rotor_data"], {}, ks)
-        out["modes_hz"][f] = float(matched_modes(data, [speed_rpm], [target])[0])
+        modes = whirl_modes(rotor_with(space["rotor_data"], {}, ks), [speed_rpm])[0]
+        out["modes_hz"][f] = float(nearest(modes, target))
         # every landed forward mode up to 2.5 x the matched one: a whirl that moves much further than the
         # matched mode has locked to another of these
-        out["forward_modes_hz"][f] = [float(x) for x in _forward_modes(data, speed_rpm)
-                                      if x <= 2.5 * out["modes_hz"][f]]
+        out["forward_modes_hz"][f] = [float(x) for x in modes if x <= 2.5 * out["modes_hz"][f]]
     f0 = out["modes_hz"][1.0]
     out["shift"] = {f: v / f0 - 1.0 for f, v in out["modes_hz"].items() if f != 1.0}
     hi = max(f for f in factors if f > 1.0)
     out["ribbon_energy_share"] = 2.0 * math.log(out["modes_hz"][hi] / f0) / math.log(hi)
     return out
-
-
-def _forward_modes(rotor_data: dict, speed_rpm: float) -> list[float]:
-    """The rotor's forward modes at ``speed_rpm`` [Hz], ascending."""
-    from .modal import modal_analysis
-    from .reduction import full_model
-    from .rotor import rotor_from_dict
-    from .timoshenko import assemble
-
-    system = full_model(assemble(rotor_from_dict(rotor_data))).with_supports()
-    return sorted(m.frequency_hz for m in modal_analysis(system, speed_rpm).modes if m.whirl == "forward")
 
 
 def ribbon_mode_changes(rm: dict, landed: dict) -> dict:
@@ -1032,13 +1021,9 @@ def report_markdown(result: dict) -> str:
         rm = result.get("ribbon_modal")
         if rm:
             sh = rm["shift"]
-            landed = {}
-            for k in rib:
-                field, _, fac = k.removeprefix("ribbon_").rpartition("_x")
-                d, f, _, _ = _de_whirl(ensembles[k])
-                if field == "k_rib" and d == "forward":
-                    landed[float(fac)] = f
-            moved = ribbon_mode_changes(rm, landed)
+            landed = {x: _de_whirl(ensembles[_ribbon_key(fld, x)]) for fld, x in RIBBON_VARIANTS
+                      if fld == "k_rib" and _ribbon_key(fld, x) in ensembles}
+            moved = ribbon_mode_changes(rm, {x: w[1] for x, w in landed.items() if w[0] == "forward"})
             lines += ["", f"What the modes say (a modal computation, no landing: `validate.ribbon_modal_shift`): the "
                       f"whirl locks to the landed forward mode of the rig rotor, {rm['modes_hz'][1.0]:.1f} Hz at "
                       f"{rm['speed_rpm']:g} rpm on the fit's support ({rm['support_n_m'][1.0]:.3g} N/m: K_rib "

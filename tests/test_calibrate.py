@@ -10,6 +10,16 @@ from rotorlanding.calibrate_run import score
 from rotorlanding.cli import main
 
 
+def _calibrate_faked(monkeypatch, tmp_path, fake_run_all, space_text: str) -> list[dict]:
+    """``calibrate`` on a space file written from ``space_text``, its landings replaced by
+    ``fake_run_all`` (jobs, workers) -> {design: {case: result}}: the table logic alone."""
+    from rotorlanding import calibrate_run as cal
+
+    monkeypatch.setattr(cal, "_run_all", fake_run_all)
+    space = tmp_path / "space.toml"
+    space.write_text(space_text)
+    return cal.calibrate(space, tmp_path / "c", workers=1)
+
 def test_score_is_zero_at_the_experimental_values_and_penalises_wrong_classes():
     exact = {"fw3000": {"direction": "forward", "frequency_hz": 48.0},
              "fw7000": {"direction": "forward", "frequency_hz": 65.0, "force_max_n": 4500.0},
@@ -92,7 +102,6 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
 def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
     """When none of the ``verify_top`` best designs converges at half the step, the next batch is
     verified; converged designs rank first, unchecked next, unconverged last."""
-    from rotorlanding import calibrate_run as cal
 
     def fake_run_all(jobs, workers):
         out = {}
@@ -103,11 +112,9 @@ def test_verification_continues_until_a_design_converges(tmp_path, monkeypatch):
             out[i] = {case: {"direction": "backward", "frequency_hz": f, "onset_s": 0.4, "persistence": 1.0}}
         return out
 
-    monkeypatch.setattr(cal, "_run_all", fake_run_all)
-    space = tmp_path / "space.toml"
-    space.write_text('samples = 7\nseed = 1\ncases = ["bw"]\nverify_top = 2\n'
-                     '[ranges]\n"bearings.DE.worn_drag_torque" = {min = 1.0, max = 3.0}\n')
-    rows = cal.calibrate(space, tmp_path / "c", workers=1)
+    rows = _calibrate_faked(monkeypatch, tmp_path, fake_run_all,
+                            'samples = 7\nseed = 1\ncases = ["bw"]\nverify_top = 2\n'
+                            '[ranges]\n"bearings.DE.worn_drag_torque" = {min = 1.0, max = 3.0}\n')
     # batches (0, 1) and (2, 3) fail, (4, 5) holds the converged 4; 6 is never checked
     assert [r["design"] for r in rows] == [4, 6, 0, 1, 2, 3, 5]
     assert [r["converged"] for r in rows] == [True, None, False, False, False, False, False]
@@ -336,7 +343,6 @@ def test_a_fit_records_the_de_whirl_shapes_per_case(tmp_path, monkeypatch):
     """Each design's row says on which shapes its drops whirled at the DE (cylindrical, conical), with
     their drops and median frequency: the 10000 rpm median follows that split (docs/calibration.md,
     session 27)."""
-    from rotorlanding import calibrate_run as cal
 
     forms = {"cylindrical": {"n": 5, "frequency_hz": 72.7}, "conical": {"n": 3, "frequency_hz": 79.3}}
 
@@ -346,11 +352,9 @@ def test_a_fit_records_the_de_whirl_shapes_per_case(tmp_path, monkeypatch):
                                                 "frequency_hz": 73.0, "forms": forms}}
                     for i, case, *_ in jobs} for i, *_ in jobs}
 
-    monkeypatch.setattr(cal, "_run_all", fake_run_all)
-    space = tmp_path / "space.toml"
-    space.write_text('samples = 1\nseed = 1\ncases = ["fw10000"]\nensemble = 8\n'
+    _calibrate_faked(monkeypatch, tmp_path, fake_run_all,
+                     'samples = 1\nseed = 1\ncases = ["fw10000"]\nensemble = 8\n'
                      '[ranges]\n"rotor.disks.4.outer_diameter" = {min = 0.40, max = 0.49}\n')
-    cal.calibrate(space, tmp_path / "c", workers=1)
     row = next(csv.DictReader(open(tmp_path / "c" / "calibration.csv")))
     assert row["fw10000_de_shapes"] == "cylindrical 5 72.70; conical 3 79.30"
 
@@ -358,7 +362,6 @@ def test_a_fit_records_the_de_whirl_shapes_per_case(tmp_path, monkeypatch):
 def test_a_fit_records_table2s_de_numbers_per_case_unscored(tmp_path, monkeypatch):
     """Each row carries the case's median DE displacement and force peaks (Table 2's numbers, forces
     on the rotor), and the score does not read them (score_force = false keeps them predictions)."""
-    from rotorlanding import calibrate_run as cal
 
     def fake_run_all(jobs, workers):
         base = {"direction": "forward", "frequency_hz": 65.0, "fraction": 1.0,
@@ -370,11 +373,9 @@ def test_a_fit_records_table2s_de_numbers_per_case_unscored(tmp_path, monkeypatc
                 **base, "v_disp_range_m": [-3e-4 * k, 1.5e-4 * k], "v_force_range_n": [-500.0 * k, 4500.0 * k]}
         return out
 
-    monkeypatch.setattr(cal, "_run_all", fake_run_all)
-    space = tmp_path / "space.toml"
-    space.write_text('samples = 2\nseed = 1\ncases = ["fw7000"]\nensemble = 8\nscore_force = false\n'
-                     '[ranges]\n"rotor.disks.4.outer_diameter" = {min = 0.40, max = 0.49}\n')
-    rows = cal.calibrate(space, tmp_path / "c", workers=1)
+    rows = _calibrate_faked(monkeypatch, tmp_path, fake_run_all,
+                            'samples = 2\nseed = 1\ncases = ["fw7000"]\nensemble = 8\nscore_force = false\n'
+                            '[ranges]\n"rotor.disks.4.outer_diameter" = {min = 0.40, max = 0.49}\n')
     for r in rows:
         k = 1.0 + r["design"]
         assert r["fw7000_v_disp_min_m"] == pytest.approx(-3e-4 * k)

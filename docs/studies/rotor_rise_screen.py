@@ -91,14 +91,9 @@ def rotor_data(base: dict, v: dict) -> dict:
 
 def forward_modes(d: dict) -> list[list[float]]:
     """The first two forward modes above 15 Hz at each screened speed [Hz]."""
-    from rotorlanding.modal import modal_analysis
-    from rotorlanding.reduction import full_model
-    from rotorlanding.rotor import rotor_from_dict
-    from rotorlanding.timoshenko import assemble
+    from rotorlanding.modefit import whirl_modes
 
-    system = full_model(assemble(rotor_from_dict(d))).with_supports()
-    return [sorted(m.frequency_hz for m in modal_analysis(system, sp).modes
-                   if m.whirl == "forward" and m.frequency_hz > 15)[:2] for sp in SPEEDS_RPM]
+    return [[f for f in fs if f > 15][:2] for fs in whirl_modes(d, SPEEDS_RPM)]
 
 
 def screen_seed(args) -> list[dict]:
