@@ -354,7 +354,12 @@ def test_provenance_follows_the_adopted_calibrations(monkeypatch):
     prov = v.provenance()
     assert prov["switch_calm"].startswith("fitted (scenarios/calibration/worn_bearing_switch.toml")
     assert prov["t1_onset"] == prov["switch_calm"] and prov["t2_force_min"] == "predicted"
+    assert prov["rise"].startswith("fitted: its frequencies are fitted (scenarios/calibration/rotor_modes.toml")
     monkeypatch.setattr(v, "ADOPTED", ())
+    # the rise of the whirl with speed stays fitted while a screen chose the rotor on it
+    assert v.provenance()["rise"] == ("fitted: the rotor's design values were screened for the rise "
+                                      "(scenarios/calibration/rotor_rise_screen.toml)")
+    monkeypatch.setattr(v, "SCREENS", ())
     assert set(v.provenance().values()) == {"predicted"}
 
 

@@ -69,13 +69,13 @@ def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
     top = sc.bounds["bearings.DE.worn_drag_torque"].max  # inside the physical bound, however near it the fit sits
     rng = {"min": 0.2, "max": value + 0.5 * (top - value)}
     monkeypatch.setattr(v, "calibrated_keys", lambda: {"bearings.DE.worn_drag_torque": ("space.toml", rng)})
-    ok, _ = v.rig_checks()
+    ok = v.rig_checks()[0]
     assert ok["pass"] and ok["source"].startswith("min: healthy")
     rng["max"] = value * 1.001  # the calibrated value now presses on the search range's end
-    on, _ = v.rig_checks()
+    on = v.rig_checks()[0]
     assert not on["pass"] and on["margin"] < 0
     rng.update(min=0.01, max=1.5 * value)  # the search range reaches outside the physical bound
-    out, _ = v.rig_checks()
+    out = v.rig_checks()[0]
     assert not out["pass"] and "outside the bound" in out["ours"]
 
 
@@ -108,3 +108,62 @@ def test_every_thermal_input_of_the_rig_has_a_sourced_bound():
             bound = sc.bounds.get(f"bearings.{b}.{k}")
             assert bound is not None and bound.source, f"bearings.{b}.{k}"
             assert bound.min <= get_dotted(sc.raw, f"bearings.{b}.{k}") <= bound.max, f"bearings.{b}.{k}"
+
+
+def test_screen_record_matches_the_rotor_file_and_its_check_finds_values_on_their_bounds(monkeypatch, tmp_path):
+    """The session-28 screen chose the rotor's design values on the paper's whirl rise, so validate
+    judges them as fitted values (validate.screen_check). The record's annuli are the rotor file's
+    lumped masses and inertias (m = rho pi/4 (D^2 - d^2) L, Ip = m/8 (D^2 + d^2), It = Ip/2 + m L^2/12),
+    and the check names each value on its bound: on the adopted rotor the DE stack's outer diameter
+    (179 of 85-180 mm) and the NDE stack's length (99.6 of 40-100 mm)."""
+    import rotorlanding.validate as v
+
+    root = v.project_root()
+    rec = load_toml(root / "scenarios" / "calibration" / "rotor_rise_screen.toml")
+    disks = {d["name"]: d for d in load_toml(root / "scenarios" / "rig_rotor.toml")["rotor"]["disks"]}
+    g = {k: e["value"] for k, e in rec["geometry"].items()}
+    rho = 7850.0
+    for name, (outer, inner, length) in {
+            "NDE_AMB_laminations": (g["NDE_AMB_laminations.outer_diameter"], 0.07, g["NDE_AMB_laminations.length"]),
+            "thrust_disk": (g["thrust_disk.outer_diameter"], 0.05, g["thrust_disk.thickness"]),
+            "coupling_hub": (g["coupling_hub.outer_diameter"], g["coupling_hub.bore"], g["coupling_hub.length"])}.items():
+        m = rho * math.pi / 4 * (outer ** 2 - inner ** 2) * length
+        ip = m / 8 * (outer ** 2 + inner ** 2)
+        d = disks[name]
+        assert (d["mass"], d["polar_inertia"], d["transverse_inertia"]) == pytest.approx(
+            (m, ip, ip / 2 + m * length ** 2 / 12), rel=2e-3), name
+    c = v.screen_check("rotor_rise_screen.toml")
+    assert not c["pass"] and c["margin"] < 0
+    assert "ON ITS BOUND: `rotor.disks.1.outer_diameter` 0.179 at 98.9% of its bound" in c["ours"]
+    assert "ON ITS BOUND: `NDE_AMB_laminations.length` 0.09956 at 99.3% of its bound" in c["ours"]
+    # the record read from elsewhere: with the NDE stack 0.094 m long (90 % of its bound) only the DE
+    # stack is named; its keys are the screen's, not "every other value"
+    text = (root / "scenarios" / "calibration" / "rotor_rise_screen.toml").read_text()
+    text = text.replace("value = 0.09956", "value = 0.094")
+    cal = tmp_path / "scenarios" / "calibration"
+    cal.mkdir(parents=True)
+    (cal / "rotor_rise_screen.toml").write_text(text)
+    monkeypatch.setattr(v, "project_root", lambda: tmp_path)
+    monkeypatch.setattr(v, "paper_dir", lambda: root / "scenarios" / "paper")
+    c2 = v.screen_check("rotor_rise_screen.toml")
+    assert "NDE_AMB_laminations.length" not in c2["ours"] and "rotor.disks.1.outer_diameter" in c2["ours"]
+    assert not c2["pass"]
+    assert "rotor.disks.1.outer_diameter" in v.screened_keys()
+
+
+def test_heldout_pick_on_its_bound_is_flagged(monkeypatch):
+    """A held-out fit's first design is judged as the adopted fit's: a value within ON_BOUND of its
+    sourced bound's end, or of its search range's, is on it (validate.heldout_pick_positions)."""
+    import rotorlanding.validate as v
+
+    key = "rotor.sections.3.outer_diameter"
+    rng = load_toml(v.holdout_dir() / "without_3000rpm_landings.toml")["ranges"]
+    other = next(k for k in rng if k != key)
+    mid = {k: 0.5 * (r["min"] + r["max"]) for k, r in rng.items()}
+    monkeypatch.setattr(v, "_holdout_best", lambda rpm: dict(mid, design=1))
+    assert not any(q["on_bound"] for q in v.heldout_pick_positions(3000))
+    b = load_scenario(PAPER / "forward_whirl_landing.toml").bounds[key]
+    near = b.min + 0.01 * (b.max - b.min)  # 1 % of the physical bound from its lower end
+    monkeypatch.setattr(v, "_holdout_best", lambda rpm: dict(mid, **{key: near}, design=1))
+    q = {p["key"]: p for p in v.heldout_pick_positions(3000)}
+    assert q[key]["on_bound"] and q[key]["bound_position"] == pytest.approx(0.01) and not q[other]["on_bound"]
