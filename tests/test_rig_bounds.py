@@ -167,3 +167,29 @@ def test_heldout_pick_on_its_bound_is_flagged(monkeypatch):
     monkeypatch.setattr(v, "_holdout_best", lambda rpm: dict(mid, **{key: near}, design=1))
     q = {p["key"]: p for p in v.heldout_pick_positions(3000)}
     assert q[key]["on_bound"] and q[key]["bound_position"] == pytest.approx(0.01) and not q[other]["on_bound"]
+
+
+def test_rows_over_fit_spans_the_designs_within_the_fits_noise(monkeypatch, tmp_path):
+    """validate.rows_over_fit: a predicted Table 2 number over the designs a stored rotor fit cannot
+    tell from its best (designs outside its noise do not count), and how many of them fall in the
+    row's band (Table 2 force minimum: -0.5 kN +/- 1.0 kN)."""
+    import json
+
+    import rotorlanding.validate as v
+
+    rows = [{"within_noise_of_best": True, "fw7000_v_force_min_n": -1200.0},
+            {"within_noise_of_best": True, "fw7000_v_force_min_n": -6000.0},
+            {"within_noise_of_best": True, "fw7000_v_force_min_n": None},
+            {"within_noise_of_best": False, "fw7000_v_force_min_n": -300.0}]
+    f = tmp_path / v.STORED_FITS["scenarios/calibration/rotor_landings.toml"]
+    f.parent.mkdir(parents=True)
+    f.write_text(json.dumps({"designs": rows}))
+    paper = v.paper_dir()
+    monkeypatch.setattr(v, "project_root", lambda: tmp_path)
+    monkeypatch.setattr(v, "paper_dir", lambda: paper)
+    o = v.rows_over_fit()
+    assert set(o) == {"t2_force_min"}
+    assert (o["t2_force_min"]["min"], o["t2_force_min"]["max"], o["t2_force_min"]["n"]) == (-6000.0, -1200.0, 2)
+    assert o["t2_force_min"]["in_band"] == 1
+    f.unlink()
+    assert v.rows_over_fit() == {}

@@ -61,9 +61,10 @@ def stations(l_stub: float, l_main: float, l_de: float) -> dict:
             "DE_probe": de_end, "thrust_disk": de_end + 0.08, "coupling": de_end + l_de - 0.04}
 
 
-def sample(rng) -> tuple[dict, dict]:
+def sample(rng, same_amb: bool = False) -> tuple[dict, dict]:
     """One rotor's values (dotted rotor-file keys) and the annuli they came from. The draw order is
-    fixed: it is what makes a seed reproduce its rotors."""
+    fixed: it is what makes a seed reproduce its rotors. ``same_amb``: the NDE radial AMB's stack is
+    the DE's (one stator design for both, as a rig would have; session-29 review), drawn the same."""
     u = lambda a, b: a + rng.random() * (b - a)  # noqa: E731
     v = {"rotor.sections.0.length": u(0.06, 0.20), "rotor.sections.3.length": u(0.5, 0.9),
          "rotor.sections.6.length": u(0.15, 0.35), "rotor.sections.0.outer_diameter": u(0.03, 0.10),
@@ -72,6 +73,8 @@ def sample(rng) -> tuple[dict, dict]:
          "rotor.disks.1.thickness": u(0.04, 0.10)}
     geom = {"nde": (u(0.085, 0.18), 0.07, u(0.04, 0.10)), "thrust": (u(0.15, 0.26), 0.05, u(0.015, 0.04)),
             "hub": (u(0.08, 0.13), u(0.04, 0.05), u(0.05, 0.08))}
+    if same_amb:
+        geom["nde"] = (v["rotor.disks.1.outer_diameter"], 0.07, v["rotor.disks.1.thickness"])
     for j, key in ((0, "nde"), (2, "thrust"), (3, "hub")):
         m, ip, it = annulus(*geom[key])
         v[f"rotor.disks.{j}.mass"], v[f"rotor.disks.{j}.polar_inertia"], v[f"rotor.disks.{j}.transverse_inertia"] = m, ip, it
@@ -97,14 +100,14 @@ def forward_modes(d: dict) -> list[list[float]]:
 
 
 def screen_seed(args) -> list[dict]:
-    seed, n = args
+    seed, n, same_amb = args
     from rotorlanding.config import load_toml
 
     base = load_toml(ROOT / "scenarios" / "rig_rotor.toml")
     rng = np.random.default_rng(seed)
     out = []
     for i in range(n):
-        v, geom = sample(rng)
+        v, geom = sample(rng, same_amb)
         try:
             f = forward_modes(rotor_data(base, v))
         except Exception as exc:  # a rotor the model refuses is listed, not ranked
@@ -114,11 +117,32 @@ def screen_seed(args) -> list[dict]:
     return out
 
 
-def ranking(rows: list[dict]) -> list[dict]:
+#: every drawn value's range (the rotor file's [bounds], the annuli's in
+#: scenarios/calibration/rotor_rise_screen.toml): what ``--margin`` measures against
+DRAWN = {"rotor.sections.0.length": (0.06, 0.20), "rotor.sections.3.length": (0.5, 0.9),
+         "rotor.sections.6.length": (0.15, 0.35), "rotor.sections.0.outer_diameter": (0.03, 0.10),
+         "rotor.sections.3.outer_diameter": (0.035, 0.05), "rotor.disks.4.outer_diameter": (0.25, 0.49),
+         "rotor.disks.4.thickness": (0.01, 0.07), "rotor.disks.1.outer_diameter": (0.085, 0.18),
+         "rotor.disks.1.thickness": (0.04, 0.10)}
+DRAWN_GEOM = {("nde", 0): (0.085, 0.18), ("nde", 2): (0.04, 0.10), ("thrust", 0): (0.15, 0.26),
+              ("thrust", 2): (0.015, 0.04), ("hub", 0): (0.08, 0.13), ("hub", 1): (0.04, 0.05), ("hub", 2): (0.05, 0.08)}
+
+
+def clearance(r: dict) -> float:
+    """The smallest share of its range's width between any drawn value and the nearer end."""
+    pos = [(r["vals"][k] - a) / (b - a) for k, (a, b) in DRAWN.items()]
+    pos += [(r["geom"][g][i] - a) / (b - a) for (g, i), (a, b) in DRAWN_GEOM.items()]
+    return min(min(p, 1 - p) for p in pos)
+
+
+def ranking(rows: list[dict], margin: float = 0.0) -> list[dict]:
+    """Rotors whose first forward mode at 7000 rpm lies in ``F7000_WINDOW_HZ``, and (``margin``) whose
+    every drawn value lies at least that share of its range's width from either end, ranked by the
+    mode's rise from 7000 to 10000 rpm."""
     ranked = []
     for r in rows:
         f = r.get("modes_hz")
-        if not f or any(not x for x in f):
+        if not f or any(not x for x in f) or clearance(r) < margin:
             continue
         f1 = [x[0] for x in f]
         if F7000_WINDOW_HZ[0] <= f1[1] <= F7000_WINDOW_HZ[1]:
@@ -131,22 +155,28 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "docs" / "studies" / "rotor_rise_screen"))
     ap.add_argument("--samples", type=int, default=1500, help="rotors per seed (seeds 1 and 2)")
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--same-amb", action="store_true",
+                    help="one radial AMB design: the NDE stack drawn equal to the DE's (session 29)")
+    ap.add_argument("--margin", type=float, default=0.0,
+                    help="rank only rotors whose every drawn value lies this share of its range from either end")
     a = ap.parse_args(argv)
     with ProcessPoolExecutor(a.workers) as ex:
-        rows = [r for part in ex.map(screen_seed, [(s, a.samples) for s in SEEDS]) for r in part]
+        rows = [r for part in ex.map(screen_seed, [(s, a.samples, a.same_amb) for s in SEEDS]) for r in part]
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     tmp = out / "rotor_rise_screen.json.tmp"
-    tmp.write_text(json.dumps({"speeds_rpm": SPEEDS_RPM, "support_n_per_m": SUPPORT_N_PER_M, "rows": rows}))
+    tmp.write_text(json.dumps({"speeds_rpm": SPEEDS_RPM, "support_n_per_m": SUPPORT_N_PER_M, "same_amb": a.same_amb,
+                               "rows": rows}))
     tmp.replace(out / "rotor_rise_screen.json")
     ok = [r for r in rows if "modes_hz" in r]
     rise = np.array([x["modes_hz"][2][0] / x["modes_hz"][1][0] for x in ok])
     print(f"{len(ok)} of {len(rows)} rotors analysed; first forward mode's rise 10000 / 7000 rpm: "
           f"median {np.median(rise):.3f}, 99th percentile {np.quantile(rise, 0.99):.3f}, max {rise.max():.3f} "
           "(measured whirl 77 / 65 = 1.185)")
-    print(f"ranked (mode at 7000 rpm within {F7000_WINDOW_HZ[0]:g}-{F7000_WINDOW_HZ[1]:g} Hz), first 10:")
+    print(f"ranked (mode at 7000 rpm within {F7000_WINDOW_HZ[0]:g}-{F7000_WINDOW_HZ[1]:g} Hz"
+          + (f", every drawn value >= {a.margin:.0%} of its range from either end" if a.margin else "") + "), first 10:")
     print("seed sample | rise 10000/7000 | rise 7000/3000 | modes 3000 / 7000 / 10000 [Hz]")
-    for r in ranking(rows)[:10]:
+    for r in ranking(rows, a.margin)[:10]:
         f1 = [x[0] for x in r["modes_hz"]]
         print(f"{r['seed']} {r['sample']} | {r['rise_10000_7000']:.3f} | {r['rise_7000_3000']:.3f} | "
               + " / ".join(f"{x:.1f}" for x in f1))
