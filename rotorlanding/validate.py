@@ -1099,16 +1099,19 @@ def report_markdown(result: dict) -> str:
     drops = next((c["robust"]["drops"] for c in held if (c.get("robust") or {}).get("drops")), None)
     lines += ["", "## Held-out speeds: the rotor fitted on two speeds predicts the third", ""]
     if held:
-        lines += ["The rig rotor's free values (the ranges of `scenarios/calibration/rotor_landings.toml`) fitted again by landing "
-                  "(`rotorlanding calibrate scenarios/calibration/holdout/without_<rpm>rpm_landings.toml`) with the "
+        lines += ["The rig rotor's two free values fitted again by landing "
+                  "(`rotorlanding calibrate scenarios/calibration/holdout/without_<rpm>rpm_landings.toml`: ranges "
+                  "centred on the screen's rotor, which read the 7000 and 10000 rpm modes only, so that no range "
+                  "comes from the speed it predicts) with the "
                   f"combined landing at one Fig. 39 speed left out; that landing is then run on the fitted rotor "
                   f"({HELDOUT_DROPS} drops). Two margins: the frequency's, and the share's in drops (binomial "
                   "standard error, as for the causes).", "",
                   f"A fit on {f'{drops}-drop ensembles' if drops else 'ensembles of a few drops'} cannot rank the designs near its best (`calibrate`'s "
                   "`within_noise_of_best`: a score within 2 standard errors of the best's), and which comes first "
                   "moves with the install. So each held-out prediction is also judged over every design its fit "
-                  f"cannot tell from the one landed here, on the full fit's own {f'{drops} ' if drops else ''}drops of each at the "
-                  "held-out speed "
+                  f"cannot tell from the one landed here, on the {f'{drops} ' if drops else ''}drops of each at the "
+                  "held-out speed of a three-speed fit on the same ranges and designs "
+                  "(`scenarios/calibration/holdout/all_speeds_landings.toml`) "
                   "(`python docs/studies/heldout_span.py`, `docs/studies/heldout_span/heldout_span.md`); a verdict that "
                   "some of them reverse is marked as hanging on the fit's pick.", "",
                   "| check | rule | ours | margin [Hz] (s.e.) | margin [drops] (s.e.) | over the fit's noise | verdict | "
@@ -1130,12 +1133,15 @@ def report_markdown(result: dict) -> str:
                   "On the session-15 rotor that mode rose from 7000 to 10000 rpm by at most 16 %, against 18.5 % "
                   "measured, so its fit without 3000 rpm drifted to stiff main shafts whose DE journal does not whirl "
                   "at 3000 rpm. The session-28 rotor's design values come from a screen of every bounded rotor value "
-                  "for that rise (`docs/studies/rotor_rise_screen.py`); the screen reads the 7000 and 10000 rpm "
+                  "for that rise (`docs/studies/rotor_rise_screen.py`, recorded as the fit it is in "
+                  "`scenarios/calibration/rotor_rise_screen.toml`); the screen reads the 7000 and 10000 rpm "
                   "frequencies only, so the held-out 7000 and 10000 rpm predictions share that choice with the speed "
-                  "they predict, and only the held-out 3000 rpm prediction is independent of it. Its landed whirl is "
+                  "they predict, and only the held-out 3000 rpm prediction is independent of it (its fit's ranges too, "
+                  "since session 29). Its landed whirl is "
                   "one cylindrical state at every speed, the same in every drop. Two speeds still tie the main shaft "
-                  "over a few millimetres, and at its stiff end the DE journal stops whirling at 3000 rpm: that verdict "
-                  "hangs on the fit's pick, as its row says."]
+                  "over a few millimetres, and at its stiff end the DE journal stops whirling at 3000 rpm: where the "
+                  "verdict hangs on the fit's pick, its row says so; a pick on its bound fails the row (the rule of "
+                  "the rig table)."]
     else:
         lines += ["Not run: no held-out fit in `scenarios/calibration/holdout/` (or another rig rotor was given)."]
     rig = [c for c in ev["checks"] if c["group"] == "rig"]
@@ -1180,7 +1186,7 @@ def report_markdown(result: dict) -> str:
                 lines[-1] += (" So the ribbon does not move the mode; it can move the whirl to another mode: "
                               + "; ".join(f"with K_rib x{f:g} the whirl ({hz:.1f} Hz) is nearest another landed forward "
                                           f"mode, {near:.1f} Hz ({hz / near:.2f} of it), not the one the base whirl "
-                                          f"follows ({m:.1f} Hz)"
+                                          f"follows ({m:.1f} Hz at that K_rib)"
                                           for f, (hz, near, m) in sorted(moved.items()))
                               + ". The check counts that shift: the whirl's frequency is what the paper says the "
                               "ribbon influences.")

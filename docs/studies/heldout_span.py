@@ -9,11 +9,13 @@ A held-out prediction is then a band: every design the two-speed fit cannot tell
 predicts the third speed. This study asks whether each of them does.
 
 No extra landings: the held-out fits (`without_<rpm>rpm_landings.toml`) sample the same 24 designs
-(seed 15) as the full fit (`rotor_landings.toml`) and score two of its three speeds, so one run of
-the full fit holds every held-out fit (scored on the parts of the two speeds, with their errors)
-and every design's landing at the held-out speed (the fit's drops per speed; validate lands 16). The fit is run
-into OUT/fit unless ``--from`` names its calibration.json (written by calibrate since session 25,
-with the parts' errors ``err_<part>_se`` and the DE columns ``<case>_de_*``).
+(seed 15) as the three-speed fit on their ranges (`holdout/all_speeds_landings.toml`; since session 29
+the held-out ranges are centred on the screen's rotor, not on rotor_landings.toml's, which a three-speed
+probe set) and score two of its three speeds, so one run of it holds every held-out fit (scored on the
+parts of the two speeds, with their errors) and every design's landing at the held-out speed (the fit's
+drops per speed; validate lands 16). The fit is run into OUT/heldout_fit unless ``--from`` names its
+calibration.json (written by calibrate since session 25, with the parts' errors ``err_<part>_se`` and the
+DE columns ``<case>_de_*``).
 
 Writes OUT/heldout_span.md and OUT/heldout_span.json (atomically).
 """
@@ -122,18 +124,19 @@ def run_drops(src: Path, space: Path) -> int:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(ROOT / "docs" / "studies" / "heldout_span"))
-    ap.add_argument("--from", dest="source", default=None, help="calibration.json of a run of rotor_landings.toml")
+    ap.add_argument("--from", dest="source", default=None,
+                    help="calibration.json of a run of scenarios/calibration/holdout/all_speeds_landings.toml")
     ap.add_argument("--workers", type=int, default=2)
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    space = ROOT / "scenarios" / "calibration" / "rotor_landings.toml"
+    space = ROOT / "scenarios" / "calibration" / "holdout" / "all_speeds_landings.toml"
     if a.source:
         src = Path(a.source)
         rows = json.loads(src.read_text())["designs"]
     else:
-        rows = calibrate(space, out / "fit", workers=a.workers)
-        src = out / "fit" / "calibration.json"
+        rows = calibrate(space, out / "heldout_fit", workers=a.workers)
+        src = out / "heldout_fit" / "calibration.json"
     if not rows or "err_fw3000_se" not in rows[0]:
         print(f"{src}: no per-part errors (err_<part>_se); re-run calibrate (session 25 or later)", file=sys.stderr)
         return 2
