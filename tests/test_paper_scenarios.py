@@ -82,7 +82,7 @@ def test_worn_de_bearing_radial_friction_decides_the_backward_whirl():
     backward at 0.3, everything else equal; 8 drops each from the 5 um circle, the full 1.2 s
     record (a whirl at 0.15 may start late). validate measured 32 of 32 calm and 31 of 32 backward
     (session 28 rotor); the rule here is the validation's, 7 of 8, on each side.
-    The mechanism: the DE's static load passes the worn torque only above mu* = T_w / (r_i W) = 0.49,
+    The mechanism: the DE's static load passes the worn torque only above mu* = T_w / (r_i W) = 0.55,
     so the race stalls at rest at both frictions, and radial friction decides whether the bounces
     carry it into the whirl (docs/calibration.md, "Session 15")."""
     from collections import Counter
