@@ -630,19 +630,48 @@ def screened_keys() -> dict[str, tuple[str, dict]]:
     return out
 
 
+def load_screen(f: Path) -> dict:
+    """A screen's record (``SCREENS``), checked: ``script``, ``chosen`` and ``targets`` texts, ``[ranges]``
+    of {min < max}, ``[geometry]`` of {value, min < max, source}; a bad field is one line naming it."""
+    from .config import load_toml
+
+    rec = load_toml(f)
+
+    def num(x):
+        return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+    for key in ("script", "chosen", "targets"):
+        if not (isinstance(rec.get(key), str) and rec[key].strip()):
+            raise InputError(f"{f}: {key}", rec.get(key), "a text saying what the screen was")
+    extra = set(rec) - {"script", "chosen", "targets", "ranges", "geometry"}
+    if extra:
+        raise InputError(f"{f}: {sorted(extra)[0]}", rec[sorted(extra)[0]],
+                         "unknown field; allowed: script, chosen, targets, ranges, geometry")
+    for key, r in rec.get("ranges", {}).items():
+        if not (isinstance(r, dict) and set(r) <= {"min", "max", "log"} and num(r.get("min")) and num(r.get("max"))
+                and r["min"] < r["max"]):
+            raise InputError(f"{f}: ranges.{key}", r, "{min = a, max = b} with a < b")
+    for key, g in rec.get("geometry", {}).items():
+        if not (isinstance(g, dict) and set(g) == {"value", "min", "max", "source"}
+                and all(num(g[k]) for k in ("value", "min", "max")) and g["min"] < g["max"]
+                and isinstance(g["source"], str) and g["source"].strip()):
+            raise InputError(f"{f}: geometry.{key}", g, "{value, min < max, source = \"where the bound comes from\"}")
+    return rec
+
+
 def screen_check(name: str, rig=None) -> dict | None:
     """One rig row for a screen's record (``SCREENS``): every value it chose inside its sourced
     bound and its draw range, and not on either (``ON_BOUND``), as ``rig_checks`` asks of a fitted
     value. Its rotor-file keys are read from the paper scenario; its ``[geometry]`` (the dimensions
     of lumped items the rotor file holds as mass and inertias) from the record. None for another rig
     rotor (the record is of the rig's) or without the record."""
-    from .config import get_dotted, load_toml
+    from .config import get_dotted
     from .scenario import Bound, load_scenario
 
     f = project_root() / "scenarios" / "calibration" / name
     if rig is not None or not f.is_file():
         return None
-    rec = load_toml(f)
+    rec = load_screen(f)
     fname, sets = CASES["forward_7000"]
     sc = load_scenario(paper_dir() / fname, sets)
     rows = []  # (name, value, position in its bound, position in its draw range or None, inside)

@@ -757,6 +757,11 @@ def test_every_shipped_input_still_loads():
             for case in sw["cases"]:
                 load_scenario(sw["base"], sweep_run._overrides(sw["fixed"], case))
             kinds["sweep"] += 1
+        elif "script" in data and "geometry" in data:  # a screen's record, judged by validate as a fit
+            from rotorlanding.validate import SCREENS, load_screen
+
+            assert f.name in SCREENS and load_screen(f)["ranges"]
+            kinds["screen record"] += 1
         elif "ranges" in data:
             calibrate_run.load_space(f)
             kinds["calibration space"] += 1
@@ -779,8 +784,8 @@ def test_every_shipped_input_still_loads():
         else:
             kinds["other"] += 1
     assert kinds == {"scenario": 7, "coastdown": 2, "rotor": 3, "fit-modes space": 4, "sweep": 1,
-                     "calibration space": 9, "paper numbers": 1, "measured feature table": 2, "rig overlay": 1,
-                     "whirl map": 1}
+                     "calibration space": 10, "paper numbers": 1, "measured feature table": 2, "rig overlay": 1,
+                     "whirl map": 1, "screen record": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):
         for effect in CATALOGUE.values():
             for p in effect.parameters:

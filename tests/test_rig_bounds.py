@@ -193,3 +193,21 @@ def test_rows_over_fit_spans_the_designs_within_the_fits_noise(monkeypatch, tmp_
     assert o["t2_force_min"]["in_band"] == 1
     f.unlink()
     assert v.rows_over_fit() == {}
+
+
+@pytest.mark.parametrize("edit,field", [
+    (("script = ", "scriptx = "), "script"),
+    (("max = 0.18}", "max = 0.05}"), "ranges.rotor.disks.1.outer_diameter"),
+    (("value = 0.1496", "value = \"wide\""), "geometry.NDE_AMB_laminations.outer_diameter"),
+])
+def test_a_bad_screen_record_is_one_line(tmp_path, edit, field):
+    """validate.load_screen: a broken screen record names its file and field (the brief's bad-input rule)."""
+    import rotorlanding.validate as v
+
+    text = (v.project_root() / "scenarios" / "calibration" / "rotor_rise_screen.toml").read_text()
+    assert edit[0] in text
+    f = tmp_path / "screen.toml"
+    f.write_text(text.replace(edit[0], edit[1], 1))
+    with pytest.raises(InputError) as err:
+        v.load_screen(f)
+    assert str(f) in str(err.value) and field in str(err.value) and "\n" not in str(err.value)
