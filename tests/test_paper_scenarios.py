@@ -45,12 +45,13 @@ def test_combined_landing_at_3000rpm_whirls_forward_at_the_thrust_face_bearing_s
     """At 3000 rpm the thrust-face friction drives the rotor round its clearances: the landing whirls
     forward near Fig. 39's 48 Hz, at the DE journal where the paper measured (on the session-28 rotor;
     on the session-15 rotor the centred drop whirled at the NDE only), both journals together; without
-    axial rub it does not. 0.8 s: the whirl starts at 0.3-0.6 s on this rotor."""
-    s = _whirl("forward_whirl_3000rpm.toml", 0.8)
+    axial rub it does not. The scenario's full 1.0 s: the centred drop's DE whirl starts at 0.65 s with the
+    session-29 windage (0.3-0.6 s before; validate's 8 drops: 7 whirl forward at the DE)."""
+    s = _whirl("forward_whirl_3000rpm.toml", 1.0)
     de = s["whirl"]["per_bearing"]["DE"]
     assert de["direction"] == "forward" and 44.0 < de["frequency_hz"] < 52.0, de
     assert s["whirl"]["direction"] == "forward", s["whirl"]
-    off = _whirl("forward_whirl_3000rpm.toml", 0.8, ["effects.axial_rub=false"])
+    off = _whirl("forward_whirl_3000rpm.toml", 1.0, ["effects.axial_rub=false"])
     assert all(w["direction"] != "forward" for w in off["whirl"]["per_bearing"].values()), off["whirl"]
 
 
@@ -58,15 +59,15 @@ def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_is_the_cause_sho
     """Short backward-whirl landing, judged as the validation judges it: drops from a 5 um circle
     (the centred drop is mirror-symmetric and its whirl hangs on round-off). Without the worn
     bearing's drag the same mu_rad = 0.3 landing does not whirl backward (our causal claim).
-    1.0 s of the 1.2 s landing: the calibrated drag develops over some tenths of a second (median
-    onset 0.41 s since the session-26 re-fit, 0.33 s before; by 0.5 s only 2 of 4 drops whirled then). With the drag present from the drop (growth
-    angle 0) at the calibrated 3.0 N m the whirl jumps to the 64-70 Hz branch instead."""
+    The full 1.2 s record: the calibrated drag develops over some tenths of a second (session 29's
+    re-fit, 5.94 N m over 178 rad: median onset 0.41 s in validate's 32 drops, 29 of them backward; in
+    1.0 s only 2 of these 4 drops had whirled)."""
     from rotorlanding.ensemble import drop_offsets, ensemble_stats
 
     def members(extra):
         out = []
         for sets in drop_offsets(4):
-            w = _whirl("backward_whirl_landing.toml", 1.0, sets + extra)["whirl"]
+            w = _whirl("backward_whirl_landing.toml", 1.2, sets + extra)["whirl"]
             out.append({"direction": w["direction"], "frequency_hz": w["frequency_hz"], "onset_s": w["onset_s"]})
         return ensemble_stats(out)
 
