@@ -174,7 +174,8 @@ def _holdout_sets(rpm: int) -> list[str] | None:
 def heldout_span() -> dict:
     """Per held-out speed, how the held-out prediction fares over every design its fit cannot tell
     from its best (``docs/studies/heldout_span/heldout_span.json``, written by
-    ``docs/studies/heldout_span.py`` from one run of the full rotor fit: the held-out fits' designs and
+    ``docs/studies/heldout_span.py`` from one run of the three-speed fit on the held-out ranges
+    (``holdout/all_speeds_landings.toml``): the held-out fits' designs and
     scores are its parts, each design's landing at the held-out speed its 8 drops there): {rpm:
     {"passing", "n", "first", "band"}}; {} when the study has not been run. ``first`` is the study's
     first design, which the stored held-out fit's should be (the same install)."""
@@ -430,8 +431,9 @@ def provenance() -> dict:
                                       f"of {c['options']} ({c['record']})")
     # the rise of the forward whirl with speed is built from the three Fig. 39 frequencies: fitted when
     # they are, and when a screen chose the rotor on that rise (SCREENS)
-    why = [f"its frequencies are {out[k]}" for k in sorted({f"fig39_{int(r)}" for r in paper()["fig39"]["speed_rpm"]})
-           if out[k] != "predicted"][:1]
+    fitted = [out[f"fig39_{int(r)}"] for r in paper()["fig39"]["speed_rpm"] if out[f"fig39_{int(r)}"] != "predicted"]
+    why = [] if not fitted else [f"{'its frequencies are' if len(fitted) == len(paper()['fig39']['speed_rpm']) else 'some of its frequencies are'} "
+                                 f"{fitted[0]}"]
     why += [f"the rotor's design values were screened for the rise (scenarios/calibration/{name})"
             for name in SCREENS if (cal / name).is_file()]
     out["rise"] = "fitted: " + "; ".join(why) if why else "predicted"
@@ -580,8 +582,9 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
               f"DE forward in >= {CLASS_SHARE:.3g} of the drops and within 10 % of {exp:g} Hz",
               ok, margin=None if err is None else HELDOUT_BAND * exp - abs(err), se=se,
               ours=f"DE forward {v['ours']}" + ("" if f is None else f", {f:.1f} Hz ({_rel(f, exp):+.1%})")
-              + "".join(f"; the fit's pick ON ITS BOUND: `{q['key']}` {q['value']:.4g} at {q['bound_position']:.1%} of its "
-                        f"bound, {q['search_position']:.0%} of the search range" for q in on),
+              + "".join(f"; the fit's pick ON ITS BOUND: `{q['key']}` {q['value']:.4g} at "
+                        + ("no sourced bound" if q['bound_position'] is None else f"{q['bound_position']:.1%} of its bound")
+                        + f", {q['search_position']:.0%} of the search range" for q in on),
               also=[(v["margin"], v["se"])], paper_experimental=exp, class_margin=v["margin"], class_se=v["se"],
               provenance="predicted (held out of the rotor fit)", robust=robust, picks=picks)
     checks += rig or []
@@ -676,7 +679,11 @@ def screen_check(name: str, rig=None) -> dict | None:
     sc = load_scenario(paper_dir() / fname, sets)
     rows = []  # (name, value, position in its bound, position in its draw range or None, inside)
     for key, rng in rec.get("ranges", {}).items():
-        value = float(get_dotted(sc.raw, key))
+        try:
+            value = float(get_dotted(sc.raw, key))
+        except InputError:
+            rows.append((key, math.nan, None, None, False))  # the rotor has no such value: the row fails
+            continue
         b = sc.bounds.get(key)
         draw = Bound(rng["min"], rng["max"], name, bool(rng.get("log", False)))
         inside = b is not None and b.min <= draw.min and draw.max <= b.max and b.min <= value <= b.max
@@ -692,7 +699,8 @@ def screen_check(name: str, rig=None) -> dict | None:
     near = sorted((r for r in rows if clear(r) < 0.05), key=clear)
     ok = bool(rows) and all(r[4] for r in rows) and margin >= 0
     ours = (f"{len(rows)} values chosen ({rec.get('chosen', '')}); "
-            + ("; ".join(f"{'ON ITS BOUND: ' if clear(r) < ON_BOUND else ''}`{r[0]}` {r[1]:.4g} at {r[2]:.1%} of its bound"
+            + ("; ".join(f"`{r[0]}` {r[1]:.4g} has no sourced bound" if r[2] is None else
+                         f"{'ON ITS BOUND: ' if clear(r) < ON_BOUND else ''}`{r[0]}` {r[1]:.4g} at {r[2]:.1%} of its bound"
                          for r in near) + "; the rest 5-95 %" if near else "every one 5-95 % of its bound"))
     return {"group": "rig", "check": f"{name}: the screen's design values inside their bounds", "pass": ok,
             "parameter": f"the design values of `{rec.get('script', name)}` (rotor file and the lumped items' annuli)",
@@ -738,7 +746,13 @@ def rows_over_fit(cal: str = "scenarios/calibration/rotor_landings.toml") -> dic
     f = project_root() / STORED_FITS[cal] if cal in STORED_FITS else None
     if f is None or not f.is_file():
         return {}
-    near = [x for x in json.loads(f.read_text())["designs"] if x.get("within_noise_of_best")]
+    d = json.loads(f.read_text())
+    space = Path(d.get("space", cal))
+    if space.is_absolute() and space.is_relative_to(project_root()):
+        space = space.relative_to(project_root())
+    if space.as_posix() != cal:
+        return {}  # a run of another space file: its designs are not this fit's
+    near = [x for x in d["designs"] if x.get("within_noise_of_best")]
     out = {}
     for key, field in FIT_RECORDED.items():
         row = next(r for r in TABLE_ROWS if r[0] == key)
@@ -804,7 +818,8 @@ def rig_value_check(rig=None) -> dict:
     from .config import get_dotted
     from .scenario import load_scenario
 
-    calibrated = calibrated_keys() | screened_keys()
+    # the screen's record is of the rig rotor: under --rig its keys are the overlay's values, checked here
+    calibrated = calibrated_keys() | (screened_keys() if rig is None else {})
     values: dict[str, dict] = {}
     for case, (fname, sets) in CASES.items():
         sc = load_scenario(paper_dir() / fname, sets, overlays=[rig] if rig else ())
@@ -1130,8 +1145,8 @@ def report_markdown(result: dict) -> str:
     if held:
         lines += ["The rig rotor's two free values fitted again by landing "
                   "(`rotorlanding calibrate scenarios/calibration/holdout/without_<rpm>rpm_landings.toml`: ranges "
-                  "centred on the screen's rotor, which read the 7000 and 10000 rpm modes only, so that no range "
-                  "comes from the speed it predicts) with the "
+                  "set around the screen's rotor, which read the 7000 and 10000 rpm modes only, so that no range "
+                  "comes from a landing) with the "
                   f"combined landing at one Fig. 39 speed left out; that landing is then run on the fitted rotor "
                   f"({HELDOUT_DROPS} drops). Two margins: the frequency's, and the share's in drops (binomial "
                   "standard error, as for the causes).", "",

@@ -81,8 +81,8 @@ def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_is_the_cause_sho
 def test_worn_de_bearing_radial_friction_decides_the_backward_whirl():
     """Table 1's switch (issue 15): the same worn DE bearing lands calm at mu_rad 0.15 and whirls
     backward at 0.3, everything else equal; 8 drops each from the 5 um circle, the full 1.2 s
-    record (a whirl at 0.15 may start late). validate measured 32 of 32 calm and 31 of 32 backward
-    (session 28 rotor); the rule here is the validation's, 7 of 8, on each side.
+    record (a whirl at 0.15 may start late). validate measured 32 of 32 calm and 29 of 32 backward
+    (session-28 rotor, session-29 worn fit); the rule here is the validation's, 7 of 8, on each side.
     The mechanism: the DE's static load passes the worn torque only above mu* = T_w / (r_i W) = 0.55,
     so the race stalls at rest at both frictions, and radial friction decides whether the bounces
     carry it into the whirl (docs/calibration.md, "Session 15")."""
@@ -263,6 +263,28 @@ def test_heldout_verdict_is_flagged_when_its_share_of_drops_hangs_on_noise():
     assert not c["pass"] and c["class_margin"] == -1
 
 
+def test_heldout_row_fails_when_the_fits_pick_sits_on_its_bound(monkeypatch):
+    """A held-out prediction whose fit stopped on a bound is not a prediction: the same 16 drops at the
+    right frequency pass with the pick inside its bounds and fail, naming the value, with it on one
+    (validate.heldout_pick_positions; the rig table's rule for the adopted fit)."""
+    import rotorlanding.validate as v
+
+    s = {k: None for k in v.CASES}
+    members = [_member("forward", 77.0 + 0.1 * k, 0.1) for k in range(16)]
+    inside = [{"key": "rotor.sections.3.outer_diameter", "value": 0.0366, "bound_position": 0.046,
+               "search_position": 0.26, "on_bound": False}]
+    monkeypatch.setattr(v, "heldout_pick_positions", lambda rpm: inside)
+    c = next(c for c in v.evaluate_cases(s, _paper_ensembles(heldout_10000=members))["checks"] if c["group"] == "held-out")
+    assert c["pass"] and "ON ITS BOUND" not in c["ours"]
+    on = [dict(inside[0], value=0.03563, bound_position=0.018, on_bound=True),
+          {"key": "rotor.disks.4.outer_diameter", "value": 0.4, "bound_position": None, "search_position": 0.5,
+           "on_bound": True}]
+    monkeypatch.setattr(v, "heldout_pick_positions", lambda rpm: on)
+    c = next(c for c in v.evaluate_cases(s, _paper_ensembles(heldout_10000=members))["checks"] if c["group"] == "held-out")
+    assert not c["pass"] and "ON ITS BOUND: `rotor.sections.3.outer_diameter` 0.03563 at 1.8% of its bound" in c["ours"]
+    assert "`rotor.disks.4.outer_diameter` 0.4 at no sourced bound" in c["ours"]
+
+
 def test_heldout_verdict_says_when_it_hangs_on_the_fits_pick(tmp_path, monkeypatch):
     """A held-out prediction judged over every design its fit cannot tell from its best
     (docs/studies/heldout_span): a pass that some of those designs reverse is marked as hanging on
@@ -275,7 +297,9 @@ def test_heldout_verdict_says_when_it_hangs_on_the_fits_pick(tmp_path, monkeypat
     span = {"heldout": [{"rpm": 10000, "first": 8, "passing": 8, "within_noise": [
         {"error": -0.04, "pass": True}] * 8 + [{"error": None, "pass": False}] * 9}]}
     (tmp_path / "docs" / "studies" / "heldout_span" / "heldout_span.json").write_text(json.dumps(span))
+    paper = v.paper_dir()  # the paper's numbers and scenarios stay the checkout's
     monkeypatch.setattr(v, "project_root", lambda: tmp_path)
+    monkeypatch.setattr(v, "paper_dir", lambda: paper)
     monkeypatch.setattr(v, "_heldout_first", lambda rpm: 8)
     s = {k: None for k in v.CASES}
     ev = v.evaluate_cases(s, _paper_ensembles(heldout_10000=[_member("forward", 77.0 + 0.1 * k, 0.1) for k in range(16)]))
@@ -451,9 +475,9 @@ def test_holdout_sets_read_the_landing_fit_before_the_modal_fit(tmp_path, monkey
 def test_report_figures_are_copied_beside_the_report_and_shown(tmp_path):
     # the published report shows its figures from a folder beside it (issue 15, point 5), not file
     # names of a run folder the reader does not have; a figure the run did not make is left out
-    from rotorlanding.validate import GALLERY, copy_gallery, figure_lines, gallery_dir
-
     import matplotlib
+
+    from rotorlanding.validate import GALLERY, copy_gallery, figure_lines, gallery_dir
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
