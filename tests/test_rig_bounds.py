@@ -211,3 +211,24 @@ def test_a_bad_screen_record_is_one_line(tmp_path, edit, field):
     with pytest.raises(InputError) as err:
         v.load_screen(f)
     assert str(f) in str(err.value) and field in str(err.value) and "\n" not in str(err.value)
+
+
+def test_heldout_search_range_outside_the_physical_bound_is_flagged(monkeypatch, tmp_path):
+    """A held-out fit whose search range reaches outside the sourced bound fits no physical value,
+    wherever its pick lands (validate.heldout_pick_positions)."""
+    import rotorlanding.validate as v
+
+    (tmp_path / "without_3000rpm_landings.toml").write_text(
+        '[ranges]\n"rotor.sections.3.outer_diameter" = {min = 0.030, max = 0.045}\n')
+    monkeypatch.setattr(v, "holdout_dir", lambda: tmp_path)
+    monkeypatch.setattr(v, "_holdout_best", lambda rpm: {"rotor.sections.3.outer_diameter": 0.0375, "design": 1})
+    (q,) = v.heldout_pick_positions(3000)
+    assert not q["search_inside"] and q["on_bound"] and 0.05 < q["bound_position"] < 0.95
+
+
+def test_rise_label_credits_the_screen_only_for_the_rig_rotor():
+    """The rig rotor was screened on the whirl's rise; another rotor given with --rig was not."""
+    import rotorlanding.validate as v
+
+    assert "screened for the rise" in v.provenance()["rise"]
+    assert "screened" not in v.provenance("other_rotor.toml")["rise"]
