@@ -533,7 +533,7 @@ def test_validate_write_failures_are_one_line(monkeypatch, tmp_path, capsys):
 
     monkeypatch.setattr(V, "run_all", lambda *a, **k: [])
     monkeypatch.setattr(V, "ribbon_modal_shift", lambda rig: None)
-    monkeypatch.setattr(V, "evaluate_cases", lambda *a: {"checks": []})
+    monkeypatch.setattr(V, "evaluate_cases", lambda *a, **k: {"checks": []})
     monkeypatch.setattr(V, "counts_line", lambda ev: "")
 
     def full_disk(result, out):
