@@ -191,6 +191,21 @@ def heldout_span() -> dict:
     return out
 
 
+def placement(value: float, bound, search) -> dict:
+    """Where a fitted value sits, the one rule for every fitted value (``rig_checks``, the held-out
+    fits' picks, a screen's record): its position in its sourced ``bound`` and in the ``search`` range
+    it was fitted or drawn in (either may be None), whether that range lies inside the bound, and
+    ``clear``, the share of the width from the nearer end of either; ``on_bound`` when it is below
+    ``ON_BOUND`` or there is no bound."""
+    pos = None if bound is None else bound.position(value)
+    spos = None if search is None else search.position(value)
+    inside = bound is not None and (search is None or bound.min <= search.min and search.max <= bound.max)
+    ends = [x for p in (pos, spos) if p is not None for x in (p, 1 - p)]
+    clear = min(ends) if bound is not None else -1.0
+    return {"bound_position": pos, "search_position": spos, "search_inside": inside, "clear": clear,
+            "on_bound": not inside or clear < ON_BOUND}
+
+
 def heldout_pick_positions(rpm: int) -> list[dict]:
     """Where the held-out fit's first design (``_holdout_best``) sits: each fitted value's position
     in its sourced bound (the rig rotor's ``[bounds]``) and in the fit's search range, and whether it
@@ -207,14 +222,8 @@ def heldout_pick_positions(rpm: int) -> list[dict]:
     for tied, rng in load_toml(space).get("ranges", {}).items():
         value = float(best[tied])
         search = Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
-        for key in (k.strip() for k in tied.split(",")):
-            b = bounds.get(key)
-            pos, spos = (None if b is None else b.position(value)), search.position(value)
-            clear = min(spos, 1 - spos) if pos is None else min(pos, 1 - pos, spos, 1 - spos)
-            # a search range reaching outside the physical bound is no fit of a physical value either
-            inside = b is not None and b.min <= search.min and search.max <= b.max
-            out.append({"key": key, "value": value, "bound_position": pos, "search_position": spos,
-                        "search_inside": inside, "on_bound": not inside or clear < ON_BOUND})
+        out += [{"key": key, "value": value, **placement(value, bounds.get(key), search)}
+                for key in (k.strip() for k in tied.split(","))]
     return out
 
 
@@ -433,9 +442,9 @@ def provenance(overlay=None) -> dict:
                                       f"of {c['options']} ({c['record']})")
     # the rise of the forward whirl with speed is built from the three Fig. 39 frequencies: fitted when
     # they are, and when a screen chose the rotor on that rise (SCREENS)
-    fitted = [out[f"fig39_{int(r)}"] for r in paper()["fig39"]["speed_rpm"] if out[f"fig39_{int(r)}"] != "predicted"]
-    why = [] if not fitted else [f"{'its frequencies are' if len(fitted) == len(paper()['fig39']['speed_rpm']) else 'some of its frequencies are'} "
-                                 f"{fitted[0]}"]
+    labels = [out[f"fig39_{int(r)}"] for r in paper()["fig39"]["speed_rpm"]]
+    fitted = [x for x in labels if x != "predicted"]
+    why = [f"{'its' if len(fitted) == len(labels) else 'some of its'} frequencies are {fitted[0]}"] if fitted else []
     # a screen's record is of the rig rotor: another rotor given with --rig (``overlay``) was not screened
     why += [f"the rotor's design values were screened for the rise (scenarios/calibration/{name})"
             for name in SCREENS if (cal / name).is_file() and overlay is None]
@@ -628,13 +637,12 @@ SCREENS = ("rotor_rise_screen.toml",)
 def screened_keys() -> dict[str, tuple[str, dict]]:
     """Dotted key -> (the screen record that chose it, the range it was drawn from), as
     ``calibrated_keys`` for the screens of ``SCREENS``."""
-    from .config import load_toml
 
     out = {}
     for name in SCREENS:
         f = project_root() / "scenarios" / "calibration" / name
         if f.is_file():
-            out |= {k: (f"scenarios/calibration/{name}", rng) for k, rng in load_toml(f).get("ranges", {}).items()}
+            out |= {k: (f"scenarios/calibration/{name}", rng) for k, rng in load_screen(f).get("ranges", {}).items()}
     return out
 
 
@@ -682,31 +690,25 @@ def screen_check(name: str, rig=None) -> dict | None:
     rec = load_screen(f)
     fname, sets = CASES["forward_7000"]
     sc = load_scenario(paper_dir() / fname, sets)
-    rows = []  # (name, value, position in its bound, position in its draw range or None, inside)
+    rows = []  # (name, value, placement)
     for key, rng in rec.get("ranges", {}).items():
         try:
             value = float(get_dotted(sc.raw, key))
-        except InputError:
-            rows.append((key, math.nan, None, None, False))  # the rotor has no such value: the row fails
+        except InputError:  # the rotor has no such value: the row fails
+            rows.append((key, math.nan, placement(math.nan, None, None)))
             continue
-        b = sc.bounds.get(key)
-        draw = Bound(rng["min"], rng["max"], name, bool(rng.get("log", False)))
-        inside = b is not None and b.min <= draw.min and draw.max <= b.max and b.min <= value <= b.max
-        rows.append((key, value, None if b is None else b.position(value), draw.position(value), inside))
-    for key, g in rec.get("geometry", {}).items():
-        b = Bound(g["min"], g["max"], g["source"])
-        rows.append((key, float(g["value"]), b.position(g["value"]), None, b.min <= g["value"] <= b.max))
-
-    def clear(r):  # the share of the width from the nearer end, of the bound and of the draw range
-        return min(x for p in (r[2], r[3]) if p is not None for x in (p, 1 - p)) if r[2] is not None else -1.0
-
-    margin = min(clear(r) for r in rows) - ON_BOUND if rows else None
-    near = sorted((r for r in rows if clear(r) < 0.05), key=clear)
-    ok = bool(rows) and all(r[4] for r in rows) and margin >= 0
+        rows.append((key, value, placement(value, sc.bounds.get(key),
+                                           Bound(rng["min"], rng["max"], name, bool(rng.get("log", False))))))
+    rows += [(key, float(g["value"]), placement(g["value"], Bound(g["min"], g["max"], g["source"]), None))
+             for key, g in rec.get("geometry", {}).items()]
+    margin = min(r[2]["clear"] for r in rows) - ON_BOUND if rows else None
+    near = sorted((r for r in rows if r[2]["clear"] < 0.05), key=lambda r: r[2]["clear"])
+    ok = bool(rows) and margin >= 0 and all(r[2]["search_inside"] and 0.0 <= r[2]["bound_position"] <= 1.0
+                                            for r in rows)  # margin >= 0: every value has a bound
     ours = (f"{len(rows)} values chosen ({rec.get('chosen', '')}); "
-            + ("; ".join(f"`{r[0]}` {r[1]:.4g} has no sourced bound" if r[2] is None else
-                         f"{'ON ITS BOUND: ' if clear(r) < ON_BOUND else ''}`{r[0]}` {r[1]:.4g} at {r[2]:.1%} of its bound"
-                         for r in near) + "; the rest 5-95 %" if near else "every one 5-95 % of its bound"))
+            + ("; ".join(f"`{k}` {v:.4g} has no sourced bound" if pl["bound_position"] is None else
+                         f"{'ON ITS BOUND: ' if pl['on_bound'] else ''}`{k}` {v:.4g} at {pl['bound_position']:.1%} of its bound"
+                         for k, v, pl in near) + "; the rest 5-95 %" if near else "every one 5-95 % of its bound"))
     return {"group": "rig", "check": f"{name}: the screen's design values inside their bounds", "pass": ok,
             "parameter": f"the design values of `{rec.get('script', name)}` (rotor file and the lumped items' annuli)",
             "fitted_by": f"scenarios/calibration/{name} (a screen on {rec.get('targets', 'the data')})",
@@ -722,9 +724,9 @@ STORED_FITS = {"scenarios/calibration/rotor_landings.toml": "docs/studies/heldou
                "scenarios/calibration/worn_bearing.toml": "docs/studies/worn_fit/calibration.json"}
 
 
-def fit_span(cal: str, key: str) -> list[float] | None:
-    """[min, max] of ``key`` over the designs a stored run of calibration ``cal`` cannot tell from
-    its best (``STORED_FITS``; None without one, or when the run is of another space file)."""
+def stored_run(cal: str) -> dict | None:
+    """The stored run of calibration ``cal`` (``STORED_FITS``): its calibration.json, or None without
+    one or when the run is of another space file (its designs are not this fit's)."""
     f = project_root() / STORED_FITS[cal] if cal in STORED_FITS else None
     if f is None or not f.is_file():
         return None
@@ -732,9 +734,14 @@ def fit_span(cal: str, key: str) -> list[float] | None:
     space = Path(d.get("space", ""))
     if space.is_absolute() and space.is_relative_to(project_root()):  # a run given an absolute path
         space = space.relative_to(project_root())
-    if space.as_posix() != cal:
-        return None
-    return (d.get("within_noise_span") or {}).get(key)
+    return d if space.as_posix() == cal else None
+
+
+def fit_span(cal: str, key: str) -> list[float] | None:
+    """[min, max] of ``key`` over the designs the stored run of calibration ``cal`` cannot tell from
+    its best (``stored_run``; None without one)."""
+    d = stored_run(cal)
+    return None if d is None else (d.get("within_noise_span") or {}).get(key)
 
 
 #: Table rows a stored calibration run records per design (``calibrate``'s unscored Table 2 numbers of
@@ -748,15 +755,9 @@ def rows_over_fit(cal: str = "scenarios/calibration/rotor_landings.toml") -> dic
     (``STORED_FITS``) cannot tell from its best: row key -> {min, max, n, in_band}, the run's own
     ensemble medians (``FIT_RECORDED``). A prediction is only as sharp as the fit under it: this says
     whether any design the fit allows would bring the number into its band. {} without a stored run."""
-    f = project_root() / STORED_FITS[cal] if cal in STORED_FITS else None
-    if f is None or not f.is_file():
+    d = stored_run(cal)
+    if d is None:
         return {}
-    d = json.loads(f.read_text())
-    space = Path(d.get("space", cal))
-    if space.is_absolute() and space.is_relative_to(project_root()):
-        space = space.relative_to(project_root())
-    if space.as_posix() != cal:
-        return {}  # a run of another space file: its designs are not this fit's
     near = [x for x in d["designs"] if x.get("within_noise_of_best")]
     out = {}
     for key, field in FIT_RECORDED.items():
@@ -792,12 +793,11 @@ def rig_checks(rig=None) -> list[dict]:
             continue  # not a parameter of this rig (another rotor given with --rig)
         b = sc.bounds.get(key)
         search = Bound(rng["min"], rng["max"], cal, bool(rng.get("log", False)))
-        pos = None if b is None else b.position(value)
         # the search range must lie inside the physical bound, and the fitted value must not press
         # against either: a value on the search range's end is where the fit was stopped, not found
-        spos = search.position(value)
-        inside = b is not None and b.min <= search.min and search.max <= b.max
-        margin = None if pos is None else min(pos, 1 - pos, spos, 1 - spos) - ON_BOUND
+        pl = placement(value, b, search)
+        pos, spos, inside = pl["bound_position"], pl["search_position"], pl["search_inside"]
+        margin = None if pos is None else pl["clear"] - ON_BOUND
         where = "no bound" if b is None else (f"{value:.4g}: {pos:.0%} of its bound [{b.min:.4g}, {b.max:.4g}]"
                                               f"{' (log)' if b.log else ''}, {spos:.0%} of the search range "
                                               f"[{search.min:.4g}, {search.max:.4g}]"

@@ -183,7 +183,7 @@ def test_rows_over_fit_spans_the_designs_within_the_fits_noise(monkeypatch, tmp_
             {"within_noise_of_best": False, "fw7000_v_force_min_n": -300.0}]
     f = tmp_path / v.STORED_FITS["scenarios/calibration/rotor_landings.toml"]
     f.parent.mkdir(parents=True)
-    f.write_text(json.dumps({"designs": rows}))
+    f.write_text(json.dumps({"space": "scenarios/calibration/rotor_landings.toml", "designs": rows}))
     paper = v.paper_dir()
     monkeypatch.setattr(v, "project_root", lambda: tmp_path)
     monkeypatch.setattr(v, "paper_dir", lambda: paper)

@@ -33,7 +33,14 @@ sys.path.insert(0, str(ROOT))
 
 from rotorlanding.calibrate_run import NOISE_Z, calibrate, within_noise  # noqa: E402
 from rotorlanding.safeio import atomic_write_text  # noqa: E402
-from rotorlanding.validate import HELDOUT_BAND, ON_BOUND, class_need, paper, paper_dir  # noqa: E402
+from rotorlanding.validate import (  # noqa: E402
+    HELDOUT_BAND,
+    ON_BOUND,
+    class_need,
+    paper,
+    paper_dir,
+    placement,
+)
 
 SPEEDS = {3000: "fw3000", 7000: "fw7000", 10000: "fw10000"}
 KEYS = ("rotor.sections.3.outer_diameter", "rotor.disks.4.outer_diameter")
@@ -47,19 +54,20 @@ def sub_score(row: dict, cases: list[str]) -> tuple[float, float | None]:
     return total, (None if any(s is None for s in ses) else math.sqrt(sum(float(s) ** 2 for s in ses)))
 
 
-def on_bound(r: dict) -> bool:
+def on_bound(r: dict, bounds: dict) -> bool:
     """Whether a design's fitted value sits within ON_BOUND of its sourced bound's end (validate's
-    rule for a held-out fit's pick: such a design fails the held-out check whatever it predicts)."""
-    from rotorlanding.scenario import load_scenario
-
-    bounds = load_scenario(paper_dir() / "forward_whirl_landing.toml").bounds
-    return any(min(bounds[k].position(r[k]), 1 - bounds[k].position(r[k])) < ON_BOUND for k in KEYS)
+    rule for a held-out fit's pick, ``validate.placement``: such a design fails the held-out check
+    whatever it predicts). ``bounds``: the rig's sourced bounds."""
+    return any(placement(r[k], bounds.get(k), None)["on_bound"] for k in KEYS)
 
 
 def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
     """The fit without ``rpm``: its designs in order, the set within its noise, and what each of
     them predicts at ``rpm`` (DE direction, forward drops, frequency against the experiment). A
     design on its bound fails, as validate fails a held-out pick on its bound."""
+    from rotorlanding.scenario import load_scenario
+
+    bounds = load_scenario(paper_dir() / "forward_whirl_landing.toml").bounds
     fit = [c for r, c in SPEEDS.items() if r != rpm]
     case = SPEEDS[rpm]
     f_exp = dict(zip(paper()["fig39"]["speed_rpm"], paper()["fig39"]["experimental_hz"]))[rpm]
@@ -78,14 +86,15 @@ def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
         hz = r.get(f"{case}_de_hz")
         fwd = int(r.get(f"{case}_de_forward") or 0)
         err = (hz - f_exp) / f_exp if hz and r.get(f"{case}_de_direction") == "forward" else None
+        edge = on_bound(r, bounds)
         preds.append({"design": r["design"], **{k: r[k] for k in KEYS}, "score": r["score"], "score_se": r["score_se"],
                       "de_forward": fwd, "de_hz": hz, "error": err,
                       # the DE whirl's shapes at the held-out speed (calibrate's rows since session 27)
-                      "de_shapes": r.get(f"{case}_de_shapes"), "on_bound": on_bound(r),
+                      "de_shapes": r.get(f"{case}_de_shapes"), "on_bound": edge,
                       # validate's held-out rule: the share of drops of its class checks, the band, and
                       # the pick not on its bound
                       "pass": bool(err is not None and abs(err) <= HELDOUT_BAND and fwd >= class_need(drops)
-                                   and not on_bound(r))})
+                                   and not edge)})
     return {"rpm": rpm, "fitted_on": fit, "experiment_hz": f_exp, "first": scored[0]["design"],
             "within_noise": preds, "passing": sum(p["pass"] for p in preds)}
 
