@@ -61,18 +61,27 @@ def stations(l_stub: float, l_main: float, l_de: float) -> dict:
             "DE_probe": de_end, "thrust_disk": de_end + 0.08, "coupling": de_end + l_de - 0.04}
 
 
+#: every drawn value's range (the rotor file's [bounds], the annuli's in
+#: scenarios/calibration/rotor_rise_screen.toml), in the fixed draw order: what ``sample`` draws from
+#: and ``--margin`` measures against
+DRAWN = {"rotor.sections.0.length": (0.06, 0.20), "rotor.sections.3.length": (0.5, 0.9),
+         "rotor.sections.6.length": (0.15, 0.35), "rotor.sections.0.outer_diameter": (0.03, 0.10),
+         "rotor.sections.3.outer_diameter": (0.035, 0.05), "rotor.disks.4.outer_diameter": (0.25, 0.49),
+         "rotor.disks.4.thickness": (0.01, 0.07), "rotor.disks.1.outer_diameter": (0.085, 0.18),
+         "rotor.disks.1.thickness": (0.04, 0.10)}
+DRAWN_GEOM = {("nde", 0): (0.085, 0.18), ("nde", 2): (0.04, 0.10), ("thrust", 0): (0.15, 0.26),
+              ("thrust", 2): (0.015, 0.04), ("hub", 0): (0.08, 0.13), ("hub", 1): (0.04, 0.05), ("hub", 2): (0.05, 0.08)}
+
+
 def sample(rng, same_amb: bool = False) -> tuple[dict, dict]:
     """One rotor's values (dotted rotor-file keys) and the annuli they came from. The draw order is
     fixed: it is what makes a seed reproduce its rotors. ``same_amb``: the NDE radial AMB's stack is
     the DE's (one stator design for both, as a rig would have; session-29 review), drawn the same."""
     u = lambda a, b: a + rng.random() * (b - a)  # noqa: E731
-    v = {"rotor.sections.0.length": u(0.06, 0.20), "rotor.sections.3.length": u(0.5, 0.9),
-         "rotor.sections.6.length": u(0.15, 0.35), "rotor.sections.0.outer_diameter": u(0.03, 0.10),
-         "rotor.sections.3.outer_diameter": u(0.035, 0.05), "rotor.disks.4.outer_diameter": u(0.25, 0.49),
-         "rotor.disks.4.thickness": u(0.01, 0.07), "rotor.disks.1.outer_diameter": u(0.085, 0.18),
-         "rotor.disks.1.thickness": u(0.04, 0.10)}
-    geom = {"nde": (u(0.085, 0.18), 0.07, u(0.04, 0.10)), "thrust": (u(0.15, 0.26), 0.05, u(0.015, 0.04)),
-            "hub": (u(0.08, 0.13), u(0.04, 0.05), u(0.05, 0.08))}
+    v = {k: u(a, b) for k, (a, b) in DRAWN.items()}  # in DRAWN's order, then DRAWN_GEOM's
+    g = {k: u(a, b) for k, (a, b) in DRAWN_GEOM.items()}
+    geom = {"nde": (g["nde", 0], 0.07, g["nde", 2]), "thrust": (g["thrust", 0], 0.05, g["thrust", 2]),
+            "hub": (g["hub", 0], g["hub", 1], g["hub", 2])}
     if same_amb:
         geom["nde"] = (v["rotor.disks.1.outer_diameter"], 0.07, v["rotor.disks.1.thickness"])
     for j, key in ((0, "nde"), (2, "thrust"), (3, "hub")):
@@ -115,17 +124,6 @@ def screen_seed(args) -> list[dict]:
             continue
         out.append({"seed": seed, "sample": i, "vals": v, "geom": geom, "modes_hz": f})
     return out
-
-
-#: every drawn value's range (the rotor file's [bounds], the annuli's in
-#: scenarios/calibration/rotor_rise_screen.toml): what ``--margin`` measures against
-DRAWN = {"rotor.sections.0.length": (0.06, 0.20), "rotor.sections.3.length": (0.5, 0.9),
-         "rotor.sections.6.length": (0.15, 0.35), "rotor.sections.0.outer_diameter": (0.03, 0.10),
-         "rotor.sections.3.outer_diameter": (0.035, 0.05), "rotor.disks.4.outer_diameter": (0.25, 0.49),
-         "rotor.disks.4.thickness": (0.01, 0.07), "rotor.disks.1.outer_diameter": (0.085, 0.18),
-         "rotor.disks.1.thickness": (0.04, 0.10)}
-DRAWN_GEOM = {("nde", 0): (0.085, 0.18), ("nde", 2): (0.04, 0.10), ("thrust", 0): (0.15, 0.26),
-              ("thrust", 2): (0.015, 0.04), ("hub", 0): (0.08, 0.13), ("hub", 1): (0.04, 0.05), ("hub", 2): (0.05, 0.08)}
 
 
 def clearance(r: dict) -> float:
