@@ -1181,16 +1181,17 @@ def report_markdown(result: dict) -> str:
                   "26-28; studies, not re-run here): the landed whirl follows the landed rotor's first forward mode. "
                   "On the session-15 rotor that mode rose from 7000 to 10000 rpm by at most 16 %, against 18.5 % "
                   "measured, so its fit without 3000 rpm drifted to stiff main shafts whose DE journal does not whirl "
-                  "at 3000 rpm. The session-28 rotor's design values come from a screen of every bounded rotor value "
-                  "for that rise (`docs/studies/rotor_rise_screen.py`, recorded as the fit it is in "
+                  "at 3000 rpm. The rig rotor's design values come from a screen of every bounded rotor value "
+                  "for that rise (`docs/studies/rotor_rise_screen.py`; since session 30 with one radial AMB design and "
+                  "every drawn value at least 5 % inside its range; recorded as the fit it is in "
                   "`scenarios/calibration/rotor_rise_screen.toml`); the screen reads the 7000 and 10000 rpm "
                   "frequencies only, so the held-out 7000 and 10000 rpm predictions share that choice with the speed "
                   "they predict, and only the held-out 3000 rpm prediction is independent of it (its fit's ranges too, "
-                  "since session 29). Its landed whirl is "
-                  "one cylindrical state at every speed, the same in every drop. Two speeds still tie the main shaft "
-                  "over a few millimetres, and at its stiff end the DE journal stops whirling at 3000 rpm: where the "
-                  "verdict hangs on the fit's pick, its row says so; a pick on its bound fails the row (the rule of "
-                  "the rig table)."]
+                  "since session 29). Its landed whirl at 7000 and 10000 rpm is "
+                  "one cylindrical state, the same in every drop; at 3000 rpm the DE whirl takes conical, cylindrical "
+                  "or mixed shapes from drop to drop. Two speeds still tie the main shaft over a few millimetres: "
+                  "where the verdict hangs on the fit's pick, its row says so; a pick on its bound fails the row (the "
+                  "rule of the rig table)."]
     else:
         lines += ["Not run: no held-out fit in `scenarios/calibration/holdout/` (or another rig rotor was given)."]
     rig = [c for c in ev["checks"] if c["group"] == "rig"]

@@ -783,7 +783,7 @@ def test_every_shipped_input_still_loads():
             kinds["measured feature table"] += 1
         else:
             kinds["other"] += 1
-    assert kinds == {"scenario": 7, "coastdown": 2, "rotor": 3, "fit-modes space": 4, "sweep": 1,
+    assert kinds == {"scenario": 7, "coastdown": 2, "rotor": 4, "fit-modes space": 4, "sweep": 1,
                      "calibration space": 10, "paper numbers": 1, "measured feature table": 2, "rig overlay": 1,
                      "whirl map": 1, "screen record": 1}
     for f in ("forward_whirl_landing.toml", "backward_whirl_landing.toml", "forward_whirl_3000rpm.toml"):

@@ -309,6 +309,29 @@ def test_heldout_span_scores_the_two_fitted_speeds_and_judges_each_design_in_the
     assert h["first"] == 0 and [p["design"] for p in h["within_noise"]] == [0, 1, 2]
     assert [p["pass"] for p in h["within_noise"]] == [False, True, False] and h["passing"] == 1
     assert h["within_noise"][0]["error"] == pytest.approx(40.0 / 48.0 - 1)
+    # validate's pick rule includes the fit's search range: design 1 at 1 % of the shaft's range from
+    # its lower end fails as 'on its bound' though it predicts 47 Hz (session 30)
+    from rotorlanding.scenario import Bound
+
+    ranges = {hs.KEYS[0]: Bound(0.0399, 0.0449, "s"), hs.KEYS[1]: Bound(0.38, 0.48, "s")}
+    rows[1][hs.KEYS[0]] = 0.0399 + 0.01 * 0.005
+    h = hs.heldout(rows, 3000, 8, ranges)
+    assert [p["on_bound"] for p in h["within_noise"]] == [False, True, False] and h["passing"] == 0
+
+
+def test_heldout_fits_search_the_ranges_and_designs_of_the_study_and_rotor_fits():
+    """The held-out fits are parts of the three-speed study fit (holdout/all_speeds_landings.toml:
+    same seed, designs and ranges; docs/studies/heldout_span.py reads them as such), and since session
+    30 the adopted rotor fit searches the same ranges."""
+    from rotorlanding.config import load_toml
+
+    cal = Path(__file__).resolve().parents[1] / "scenarios" / "calibration"
+    ref = load_toml(cal / "holdout" / "all_speeds_landings.toml")
+    for f in [cal / "rotor_landings.toml"] + sorted((cal / "holdout").glob("without_*rpm_landings.toml")):
+        t = load_toml(f)
+        assert t["ranges"] == ref["ranges"], f.name
+        assert (t["samples"], t["seed"], t["ensemble"], t["t_end"]) == (ref["samples"], ref["seed"], ref["ensemble"],
+                                                                       ref["t_end"]), f.name
 
 
 def test_heldout_span_reads_the_drops_of_the_run_it_is_given(tmp_path):

@@ -59,11 +59,11 @@ RIG_TEXT = RIG.read_text()
 
 @pytest.mark.parametrize("mutate, field, value", [
     (lambda s: s.replace("density = 7850.0", ""), "rotor.materials.steel.density", "None"),
-    (lambda s: s.replace("length = 0.1287 ", "length = -0.1287 ", 1), "rotor.sections[0].length", "-0.1287"),
+    (lambda s: s.replace("length = 0.1328 ", "length = -0.1328 ", 1), "rotor.sections[0].length", "-0.1328"),
     (lambda s: s.replace("outer_diameter = 0.0596", "outer_diameter = -0.0596", 1), "rotor.sections[1].outer_diameter", "-0.0596"),
     (lambda s: s.replace("density = 7850.0", "density = -7850.0"), "rotor.materials.steel.density", "-7850.0"),
-    (lambda s: s.replace('material = "steel"\nelements = 4', 'inner_diameter = 0.09\nmaterial = "steel"\nelements = 4', 1),
-     "rotor.sections[0].inner_diameter", "0.09"),
+    (lambda s: s.replace('material = "steel"\nelements = 4', 'inner_diameter = 0.095\nmaterial = "steel"\nelements = 4', 1),
+     "rotor.sections[0].inner_diameter", "0.095"),
     (lambda s: s.replace('station = "DE_sleeve"', 'station = "DE_sleve"'), "rotor.supports[1].station", "DE_sleve"),
     (lambda s: s.replace('"NDE_sleeve", "DE_sleeve"]', '"NDE_sleeve", "XX"]'), "rotor.reduction.boundary_stations[1]", "XX"),
     (lambda s: s.replace("elements = 2\n", "elemnts = 2\n", 1), "rotor.sections[1].elemnts", "2"),

@@ -54,14 +54,28 @@ def sub_score(row: dict, cases: list[str]) -> tuple[float, float | None]:
     return total, (None if any(s is None for s in ses) else math.sqrt(sum(float(s) ** 2 for s in ses)))
 
 
-def on_bound(r: dict, bounds: dict) -> bool:
-    """Whether a design's fitted value sits within ON_BOUND of its sourced bound's end (validate's
-    rule for a held-out fit's pick, ``validate.placement``: such a design fails the held-out check
-    whatever it predicts). ``bounds``: the rig's sourced bounds."""
-    return any(placement(r[k], bounds.get(k), None)["on_bound"] for k in KEYS)
+def on_bound(r: dict, bounds: dict, ranges: dict | None = None) -> bool:
+    """Whether a design's fitted value sits within ON_BOUND of its sourced bound's end or of its fit's
+    search range's end (validate's rule for a held-out fit's pick, ``validate.placement`` as
+    ``validate.heldout_pick_positions`` applies it: such a design fails the held-out check whatever it
+    predicts). ``bounds``: the rig's sourced bounds; ``ranges``: key -> search range (Bound)."""
+    ranges = ranges or {}
+    return any(placement(r[k], bounds.get(k), ranges.get(k))["on_bound"] for k in KEYS)
 
 
-def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
+def search_ranges(space: Path) -> dict:
+    """The fit's search ranges as Bounds (tied keys split), as validate reads a held-out fit's."""
+    from rotorlanding.config import load_toml
+    from rotorlanding.scenario import Bound
+
+    out = {}
+    for tied, rng in load_toml(space).get("ranges", {}).items():
+        for k in tied.split(","):
+            out[k.strip()] = Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
+    return out
+
+
+def heldout(rows: list[dict], rpm: int, drops: int, ranges: dict | None = None) -> dict:
     """The fit without ``rpm``: its designs in order, the set within its noise, and what each of
     them predicts at ``rpm`` (DE direction, forward drops, frequency against the experiment). A
     design on its bound fails, as validate fails a held-out pick on its bound."""
@@ -86,7 +100,7 @@ def heldout(rows: list[dict], rpm: int, drops: int) -> dict:
         hz = r.get(f"{case}_de_hz")
         fwd = int(r.get(f"{case}_de_forward") or 0)
         err = (hz - f_exp) / f_exp if hz and r.get(f"{case}_de_direction") == "forward" else None
-        edge = on_bound(r, bounds)
+        edge = on_bound(r, bounds, ranges)
         preds.append({"design": r["design"], **{k: r[k] for k in KEYS}, "score": r["score"], "score_se": r["score_se"],
                       "de_forward": fwd, "de_hz": hz, "error": err,
                       # the DE whirl's shapes at the held-out speed (calibrate's rows since session 27)
@@ -108,7 +122,7 @@ def report(res: list[dict], drops: int, source: str, n: int) -> str:
              f"({drops} drops; validate lands 16 on the first design). Pass: DE forward in >= "
              f"{class_need(drops)} of {drops} and within "
              f"{100 * HELDOUT_BAND:g} % of the experiment, its shaft and disk not within {ON_BOUND:.0%} of their "
-             "bounds' ends (validate's rule for a fit's pick; marked 'on its bound'). Shapes: the DE whirl's at the held-out speed, cylindrical "
+             "sourced bounds' ends or of the fit's search ranges' (validate's rule for a fit's pick; marked 'on its bound'). Shapes: the DE whirl's at the held-out speed, cylindrical "
              "(both journals going round together) or conical (against each other), with drops and median frequency "
              "(`whirl.whirl_shape`; recorded by calibrate since session 27).", ""]
     for h in res:
@@ -164,7 +178,8 @@ def main(argv=None) -> int:
         print(f"{src}: no per-part errors (err_<part>_se); re-run calibrate (session 25 or later)", file=sys.stderr)
         return 2
     drops = run_drops(src, space)
-    res = [heldout(rows, rpm, drops) for rpm in SPEEDS]
+    # the held-out fits search the three-speed fit's ranges (same file contents, checked by a test)
+    res = [heldout(rows, rpm, drops, search_ranges(space)) for rpm in SPEEDS]
     shown = src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src
     atomic_write_text(out / "heldout_span.json", json.dumps({"source": str(shown), "drops": drops, "heldout": res},
                                                             indent=2, default=float))
