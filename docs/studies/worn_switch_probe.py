@@ -9,11 +9,13 @@ rad), everything else as adopted, and counts the drops of each class; the switch
 side is calm and the 0.3 side backward in >= 7 of 8 (validate's share) of the drops.
 
     python docs/studies/worn_switch_probe.py [--out docs/studies/worn_switch_probe] [--drops 16] [--workers 2]
-        [--torques 2.2,3.0,3.6,4.4,5.0] [--angles 60,220]
+        [--torques 2.2,3.0,3.6,4.4,5.0] [--angles 60,220] [--bearing DE|NDE]
 
 Writes OUT/worn_switch_probe.json and .md (atomically). About 5 min on 2 cores with 16 drops and the
 default grid. Session 30's runs: the default grid (stored in docs/studies/worn_switch_probe/), and
-``--torques 2.6,2.9 --angles 230 --drops 32 --out docs/studies/worn_switch_probe/near_fit`` (about 2 min).
+``--torques 2.6,2.9 --angles 230 --drops 32 --out docs/studies/worn_switch_probe/near_fit`` (about 2 min), and the
+NDE bearing worn instead (the DE healthy; the NDE carries 705 N of this rotor, the DE 248 N):
+``--bearing NDE --torques 3,6,9 --angles 220 --out docs/studies/worn_switch_probe/nde``.
 """
 
 from __future__ import annotations
@@ -57,6 +59,8 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--torques", default=",".join(f"{x:g}" for x in TORQUES_NM), help="worn drag torques [N m]")
     ap.add_argument("--angles", default=",".join(f"{x:g}" for x in ANGLES_RAD), help="growth angles [rad]")
+    ap.add_argument("--bearing", choices=("DE", "NDE"), default="DE",
+                    help="the worn bearing (the other healthy: worn_drag_torque 0)")
     a = ap.parse_args(argv)
     torques = [float(x) for x in a.torques.split(",")]
     angles = [float(x) for x in a.angles.split(",")]
@@ -64,8 +68,9 @@ def main(argv=None) -> int:
     for tw in torques:
         for ang in angles:
             for mu in FRICTIONS:
-                base = [f"bearings.DE.worn_drag_torque={tw}", f"bearings.DE.worn_drag_growth_angle={ang}",
-                        f"contact.mu_rad={mu}"]
+                other = "NDE" if a.bearing == "DE" else "DE"
+                base = [f"bearings.{a.bearing}.worn_drag_torque={tw}", f"bearings.{a.bearing}.worn_drag_growth_angle={ang}",
+                        f"bearings.{other}.worn_drag_torque=0.0", f"contact.mu_rad={mu}"]
                 jobs += [((tw, ang, mu), base + d) for d in drop_offsets(a.drops)]
     res: dict = {}
     with ProcessPoolExecutor(a.workers) as ex:
@@ -81,8 +86,9 @@ def main(argv=None) -> int:
                          "switch": calm.get("none", 0) >= need and worn.get("backward", 0) >= need})
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    atomic_write_text(out / "worn_switch_probe.json", json.dumps({"drops": a.drops, "rows": rows}, indent=2))
-    lines = [f"# Worn DE bearing against Table 1's switch ({a.drops} drops per cell; switch: calm at mu_rad 0.15 "
+    atomic_write_text(out / "worn_switch_probe.json", json.dumps({"bearing": a.bearing, "drops": a.drops, "rows": rows},
+                                                                 indent=2))
+    lines = [f"# Worn {a.bearing} bearing against Table 1's switch ({a.drops} drops per cell; switch: calm at mu_rad 0.15 "
              f"and backward at 0.3 in >= {need} of {a.drops})", "",
              "| T_w [N m] | growth angle [rad] | mu_rad 0.15 | mu_rad 0.3 | switch |", "|---|---|---|---|---|"]
     for r in rows:
