@@ -1150,8 +1150,9 @@ def report_markdown(result: dict) -> str:
     if held:
         lines += ["The rig rotor's two free values fitted again by landing "
                   "(`rotorlanding calibrate scenarios/calibration/holdout/without_<rpm>rpm_landings.toml`: ranges "
-                  "set around the screen's rotor, which read the 7000 and 10000 rpm modes only, so that no range "
-                  "comes from a landing) with the "
+                  "set around the screen's rotor, which read the 7000 and 10000 rpm modes only, so that no range's "
+                  "centre comes from a landing; the shaft's lower end, since session 30, is where validate's on-bound "
+                  "zone of its bound ends, a move prompted by a three-speed fit's pick there) with the "
                   f"combined landing at one Fig. 39 speed left out; that landing is then run on the fitted rotor "
                   f"({HELDOUT_DROPS} drops). Two margins: the frequency's, and the share's in drops (binomial "
                   "standard error, as for the causes).", "",

@@ -55,10 +55,12 @@ def test_combined_landing_at_3000rpm_whirls_forward_at_the_thrust_face_bearing_s
     assert all(w["direction"] != "forward" for w in off["whirl"]["per_bearing"].values()), off["whirl"]
 
 
-def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_is_the_cause_short():
+def test_worn_bearing_landing_whirls_backward_and_the_worn_drag_raises_its_share_short():
     """Short backward-whirl landing, judged as the validation judges it: drops from a 5 um circle
     (the centred drop is mirror-symmetric and its whirl hangs on round-off). Without the worn
-    bearing's drag the same mu_rad = 0.3 landing does not whirl backward (our causal claim).
+    bearing's drag the same mu_rad = 0.3 landing whirls backward in fewer drops. (Until session 29 the
+    claim was "in none"; on the session-30 rotor 2 of these 4 do, a weaker claim: the strict xfail
+    below keeps the old one.)
     The full 1.2 s record, validate's: the calibrated drag develops over the race's first turns
     (session 30's re-fit, 3.58 N m over 220 rad: median onset 0.12 s in validate's 32 drops, all 32
     backward; session 29's 5.94 N m whirled from 0.41 s)."""
@@ -92,8 +94,24 @@ def test_without_the_worn_drag_the_backward_landing_does_not_whirl_backward():
     assert counts.count("backward") == 0, counts
 
 
+def _switch_classes(mu, n=8):
+    from collections import Counter
+
+    from rotorlanding.ensemble import drop_offsets
+
+    return Counter(_whirl("backward_whirl_landing.toml", 1.2, sets + [f"contact.mu_rad={mu}"])["whirl"]["direction"]
+                   for sets in drop_offsets(n))
+
+
+def test_worn_de_bearing_whirls_backward_at_high_radial_friction():
+    """Table 1's switch, its backward side: the worn DE bearing whirls backward at mu_rad 0.3 in >= 7 of 8
+    drops (validate: 32 of 32 on the session-30 rotor). The calm side is the strict xfail below."""
+    worn = _switch_classes(0.3)
+    assert worn.get("backward", 0) >= 7, worn
+
+
 @pytest.mark.xfail(strict=True, reason="session 30 rig: the worn DE bearing whirls at mu_rad 0.15 too (validate: "
-                   "calm in 22 of 32 drops, backward 32 of 32 at 0.3); docs/calibration.md, Session 30")
+                   "calm in 22 of 32 drops); docs/calibration.md, Session 30")
 def test_worn_de_bearing_radial_friction_decides_the_backward_whirl():
     """Table 1's switch (issue 15): the same worn DE bearing lands calm at mu_rad 0.15 and whirls
     backward at 0.3, everything else equal; 8 drops each from the 5 um circle, the full 1.2 s
@@ -102,18 +120,9 @@ def test_worn_de_bearing_radial_friction_decides_the_backward_whirl():
     = 0.55: the race stalls at rest at both frictions and radial friction decides whether the bounces
     carry it into the whirl, docs/calibration.md "Session 15"). On the session-30 rotor (DE static
     load 248 N, worn fit 3.58 N m, mu* = 0.49) the calm side fails: a strict xfail, so that the day it
-    holds again the test says so."""
-    from collections import Counter
-
-    from rotorlanding.ensemble import drop_offsets
-
-    def classes(mu):
-        return Counter(_whirl("backward_whirl_landing.toml", 1.2, sets + [f"contact.mu_rad={mu}"])["whirl"]["direction"]
-                       for sets in drop_offsets(8))
-
-    calm, worn = classes(0.15), classes(0.3)
+    holds again the test says so. Its backward side is checked by the test above."""
+    calm = _switch_classes(0.15)
     assert calm.get("none", 0) >= 7, calm
-    assert worn.get("backward", 0) >= 7, worn
 
 
 @pytest.mark.paper

@@ -261,12 +261,19 @@ def test_windage_laws_reproduce_the_textbook_numbers():
     cf = wb.rim_cf(re)
     assert 1 / math.sqrt(cf) == pytest.approx(-0.6 + 4.07 * math.log10(re * math.sqrt(cf)), rel=1e-9)
     assert cf == pytest.approx(0.00264, rel=0.01)
+    # session 29's hand arithmetic (docs/calibration.md, "Session 29"; rig.toml's source text then): the
+    # 367.2 x 31.9 mm disk's rim 0.19 N m at 7000 rpm; the Couette drag of a 149.6 x 99.6 mm stack, 4.7e-6
+    # N m s at a 1 mm gap, of a 249.1 mm thrust disk's two faces, 1.4e-5
+    assert t["rim"] == pytest.approx(0.19, rel=0.03)
+    assert wb.c_w1_range([(0.0748, 0.0996)], 0.0)[0] == pytest.approx(4.7e-6, rel=0.02)
+    assert wb.c_w1_range([], 0.12455)[0] == pytest.approx(1.36e-5, rel=0.02)
+    assert wb.c_w1_range([], 0.12455)[1] == pytest.approx(1.36e-5 / 0.3, rel=0.02)  # the 0.3 mm gap
 
 
 def test_rig_windage_bounds_describe_the_rig_rotor():
     """The rig file's windage bounds are those derived from the rig rotor's geometry (rounded outward
     to two digits, so within 10 % outside the derived range), and the values lie inside: a new rotor
-    cannot keep the old disk's windage (session 30; session 29 found c_w2 3x above its range)."""
+    cannot keep the old disk's windage (session 30; session 29 found c_w2 1.5x the top of its range)."""
     wb = _windage_study()
     d = wb.derived()
     sc = load_scenario(PAPER / "forward_whirl_landing.toml")

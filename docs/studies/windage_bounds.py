@@ -2,7 +2,7 @@
 geometry (issue 15, point 1: "disk windage at its rim speed"; session 30).
 
 Sessions 9 and 29 derived these bounds by hand for the rotor of the day; each rotor change left them
-describing the old disk (session 29 found c_w2 3x above its re-derived range). This script is the
+describing the old disk (session 29 found c_w2 1.5x the top of its re-derived range). This script is the
 derivation, and tests/test_rig_bounds.py checks the rig file's bounds against it, so a new rotor
 cannot keep stale windage silently.
 
