@@ -15,7 +15,8 @@ Writes OUT/worn_switch_probe.json and .md (atomically). About 5 min on 2 cores w
 default grid. Session 30's runs: the default grid (stored in docs/studies/worn_switch_probe/), and
 ``--torques 2.6,2.9 --angles 230 --drops 32 --out docs/studies/worn_switch_probe/near_fit`` (about 2 min), and the
 NDE bearing worn instead (the DE healthy; the NDE carries 705 N of this rotor, the DE 248 N):
-``--bearing NDE --torques 3,6,9 --angles 220 --out docs/studies/worn_switch_probe/nde``.
+``--bearing NDE --torques 3,6,9 --angles 220 --out docs/studies/worn_switch_probe/nde`` and, with 32 drops,
+``--bearing NDE --torques 8,10,12 --angles 220 --drops 32 --out docs/studies/worn_switch_probe/nde_32``.
 """
 
 from __future__ import annotations
