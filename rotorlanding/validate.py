@@ -206,23 +206,32 @@ def placement(value: float, bound, search) -> dict:
             "on_bound": not inside or clear < ON_BOUND}
 
 
+def search_bounds(space: Path) -> dict:
+    """A calibration file's search ranges as Bounds, tied keys split: key -> Bound (named by the file)."""
+    from .config import load_toml
+    from .scenario import Bound
+
+    return {k.strip(): Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
+            for tied, rng in load_toml(space).get("ranges", {}).items() for k in tied.split(",")}
+
+
 def heldout_pick_positions(rpm: int) -> list[dict]:
     """Where the held-out fit's first design (``_holdout_best``) sits: each fitted value's position
     in its sourced bound (the rig rotor's ``[bounds]``) and in the fit's search range, and whether it
     is on either (``ON_BOUND``), as ``rig_checks`` asks of the adopted fit. [] without a stored fit."""
     from .config import load_toml
-    from .scenario import Bound, load_scenario
+    from .scenario import load_scenario
 
     best, space = _holdout_best(rpm), holdout_dir() / f"without_{rpm}rpm_landings.toml"
     if best is None or not space.is_file():
         return []
     fname, sets = CASES[f"forward_{rpm}"]
     bounds = load_scenario(paper_dir() / fname, sets).bounds
+    ranges = search_bounds(space)
     out = []
-    for tied, rng in load_toml(space).get("ranges", {}).items():
+    for tied in load_toml(space).get("ranges", {}):  # a design row holds a tied group under its joined name
         value = float(best[tied])
-        search = Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
-        out += [{"key": key, "value": value, **placement(value, bounds.get(key), search)}
+        out += [{"key": key, "value": value, **placement(value, bounds.get(key), ranges[key])}
                 for key in (k.strip() for k in tied.split(","))]
     return out
 

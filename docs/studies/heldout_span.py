@@ -40,6 +40,7 @@ from rotorlanding.validate import (  # noqa: E402
     paper,
     paper_dir,
     placement,
+    search_bounds,
 )
 
 SPEEDS = {3000: "fw3000", 7000: "fw7000", 10000: "fw10000"}
@@ -62,17 +63,6 @@ def on_bound(r: dict, bounds: dict, ranges: dict | None = None) -> bool:
     ranges = ranges or {}
     return any(placement(r[k], bounds.get(k), ranges.get(k))["on_bound"] for k in KEYS)
 
-
-def search_ranges(space: Path) -> dict:
-    """The fit's search ranges as Bounds (tied keys split), as validate reads a held-out fit's."""
-    from rotorlanding.config import load_toml
-    from rotorlanding.scenario import Bound
-
-    out = {}
-    for tied, rng in load_toml(space).get("ranges", {}).items():
-        for k in tied.split(","):
-            out[k.strip()] = Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
-    return out
 
 
 def heldout(rows: list[dict], rpm: int, drops: int, ranges: dict | None = None) -> dict:
@@ -179,7 +169,8 @@ def main(argv=None) -> int:
         return 2
     drops = run_drops(src, space)
     # the held-out fits search the three-speed fit's ranges (same file contents, checked by a test)
-    res = [heldout(rows, rpm, drops, search_ranges(space)) for rpm in SPEEDS]
+    ranges = search_bounds(space)
+    res = [heldout(rows, rpm, drops, ranges) for rpm in SPEEDS]
     shown = src.resolve().relative_to(ROOT) if src.resolve().is_relative_to(ROOT) else src
     atomic_write_text(out / "heldout_span.json", json.dumps({"source": str(shown), "drops": drops, "heldout": res},
                                                             indent=2, default=float))
