@@ -160,7 +160,8 @@ def score(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) -> tuple
 
     The backward case also scores persistence: the paper's whirl (Figs. 20-24) lasts from its onset
     to the end of the record, so ``1 - persistence`` (share of the time after onset not whirling)
-    is added as ``bw_persist``. ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
+    is added as ``bw_persist``; an ensemble adds ``bw_share``, the share of its drops that do not whirl
+    backward (validate's switch asks for 7 of 8; since session 31). ``bw015`` (Table 1's switch: the same bearing at mu_rad 0.15) scores
     the share of its drops that whirl, as ``bw015_whirls``. ``force = False`` leaves Table 2's force
     maximum out of the score (``score_force`` in the space file), so that it stays a prediction."""
     parts = score_parts(res, cases, force=force)
@@ -224,6 +225,10 @@ def score_parts(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) ->
                                b.get("persistence_se", 0.0) if ens else None)
     elif "bw" in cases:
         parts["bw_freq"] = parts["bw_onset"] = parts["bw_persist"] = (1.0, 0.0)
+    if "bw" in cases and b.get("counts"):  # an ensemble: the share of drops not whirling backward, as
+        # validate's switch judges the mu_rad 0.3 side (a majority alone passed designs with 19 of 32)
+        n, k = sum(b["counts"].values()), b["counts"].get("backward", 0)
+        parts["bw_share"] = (1.0 - k / n, share_se(k, n))
     if "bw015" in cases:  # the same bearing at mu_rad 0.15 must land calm: score its whirling share
         r = res.get("bw015", {})
         counts = r.get("counts") or {r.get("direction", "failed"): 1}

@@ -748,9 +748,11 @@ def stored_run(cal: str) -> dict | None:
 
 def fit_span(cal: str, key: str) -> list[float] | None:
     """[min, max] of ``key`` over the designs the stored run of calibration ``cal`` cannot tell from
-    its best (``stored_run``; None without one)."""
+    its best (``stored_run``; None without one). A key fitted tied to others (``"a,b"`` in the
+    ranges) has the tied range's span."""
     d = stored_run(cal)
-    return None if d is None else (d.get("within_noise_span") or {}).get(key)
+    spans = {} if d is None else (d.get("within_noise_span") or {})
+    return next((v for tied, v in spans.items() if key in (k.strip() for k in tied.split(","))), None)
 
 
 #: Table rows a stored calibration run records per design (``calibrate``'s unscored Table 2 numbers of

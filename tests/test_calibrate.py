@@ -72,6 +72,12 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     assert set(parts) == {"bw_freq", "bw_onset", "bw_persist"}
     assert parts["bw_persist"] == pytest.approx(0.25) and total == pytest.approx(0.35)
     assert score({"bw": {"direction": "none"}}, ["bw"])[0] == pytest.approx(3.0)
+    # an ensemble is also charged the share of its drops that do not whirl backward (validate's switch
+    # asks 7 of 8): a majority of 19 of 32 is not the paper's backward landing
+    ens = {"bw": dict(bw["bw"], counts={"backward": 19, "none": 13})}
+    total, parts = score(ens, ["bw"])
+    assert parts["bw_share"] == pytest.approx(13 / 32) and total == pytest.approx(0.35 + 13 / 32)
+    assert score({"bw": {"direction": "none", "counts": {"none": 5, "backward": 3}}}, ["bw"])[1]["bw_share"] == 0.625
     space = tmp_path / "space.toml"
     space.write_text('samples = 1\nseed = 1\nt_end = 0.3\ncases = ["bw"]\nensemble = 2\n[ranges]\n'
                      '"bearings.DE.worn_drag_torque,bearings.NDE.worn_drag_torque" = {min = 2.0, max = 2.5}\n')
@@ -156,7 +162,7 @@ def test_worn_bearing_calibration_scores_the_drops_validate_judges():
 
     space = load_space(Path(__file__).resolve().parents[1] / "scenarios" / "calibration" / "worn_bearing.toml")
     assert space["ensemble"] == ENSEMBLE["backward_whirl"]
-    assert space["cases"] == ["bw"]
+    assert space["cases"] == ["bw", "bw015"]
 
 
 def test_switch_case_scores_the_share_of_whirling_drops_at_normal_friction():
