@@ -225,8 +225,10 @@ def score_parts(res: dict, cases=tuple(DEFAULT_CASES), *, force: bool = True) ->
                                b.get("persistence_se", 0.0) if ens else None)
     elif "bw" in cases:
         parts["bw_freq"] = parts["bw_onset"] = parts["bw_persist"] = (1.0, 0.0)
-    if "bw" in cases and b.get("counts"):  # an ensemble: the share of drops not whirling backward, as
-        # validate's switch judges the mu_rad 0.3 side (a majority alone passed designs with 19 of 32)
+    if "bw" in cases and ens and b.get("counts"):  # an ensemble: the share of drops not whirling backward,
+        # as validate's switch judges the mu_rad 0.3 side (a majority alone passed designs with 19 of 32);
+        # a majority that is not backward pays it on top of the three parts above, on purpose: it is
+        # further from the paper's landing than a backward majority of too few drops
         n, k = sum(b["counts"].values()), b["counts"].get("backward", 0)
         parts["bw_share"] = (1.0 - k / n, share_se(k, n))
     if "bw015" in cases:  # the same bearing at mu_rad 0.15 must land calm: score its whirling share

@@ -638,6 +638,22 @@ def calibrated_keys() -> dict[str, tuple[str, dict]]:
     return out
 
 
+def tied_followers() -> dict[str, str]:
+    """Key -> the first key of its tied range (``"a,b"`` in an adopted calibration's ranges: one
+    unknown set on several keys), for every key but the first: the rig table gives a tied unknown
+    one row, not one per key."""
+    from .config import load_toml
+
+    out = {}
+    for name in ADOPTED:
+        f = project_root() / "scenarios" / "calibration" / name
+        if f.is_file():
+            for tied in load_toml(f).get("ranges", {}):
+                keys = [k.strip() for k in tied.split(",")]
+                out |= {k: keys[0] for k in keys[1:]}
+    return out
+
+
 #: records of design values chosen on the paper's data by a screen, not a search (scenarios/calibration/):
 #: validate judges them as fitted values, one rig row per screen (``screen_check``)
 SCREENS = ("rotor_rise_screen.toml",)
@@ -792,12 +808,16 @@ def rig_checks(rig=None) -> list[dict]:
     checks = []
     from .scenario import Bound
 
+    followers = tied_followers()
     for key, (cal, rng) in calibrated_keys().items():
+        if key in followers:  # a tied unknown is one row, its first key's
+            continue
         case = "backward_whirl" if key.startswith("bearings.") else "forward_7000"
         if case not in scen:
             fname, sets = CASES[case]
             scen[case] = load_scenario(paper_dir() / fname, sets, overlays=[rig] if rig else ())
         sc = scen[case]
+        tied = [k for k, lead in followers.items() if lead == key]
         try:
             value = get_dotted(sc.raw, key)
         except InputError:
@@ -817,7 +837,16 @@ def rig_checks(rig=None) -> list[dict]:
         if span and b is not None:  # the fit's own uncertainty: the designs it cannot rank against its best
             where += (f"; the fit determines [{span[0]:.4g}, {span[1]:.4g}] (designs within its noise, "
                       f"{STORED_FITS[cal]})")
-        checks.append({"group": "rig", "check": f"{key} inside its physical bound", "pass": inside and margin >= 0,
+        same = True  # the tie is one value: the rig must hold it at every tied key
+        for k in tied:
+            try:
+                same = same and math.isclose(float(get_dotted(sc.raw, k)), float(value), rel_tol=1e-12)
+            except InputError:
+                same = False
+        if tied:
+            where += f"; {', '.join(tied)} {'the same value (tied in the fit)' if same else 'NOT the same value, though tied in the fit'}"
+        name = key + (f" (tied: {', '.join(tied)})" if tied else "")
+        checks.append({"group": "rig", "check": f"{name} inside its physical bound", "pass": inside and margin >= 0 and same,
                        "rule": f"fitted by {cal}; inside its sourced bound and its search range, >= {ON_BOUND:.0%} "
                                "of their widths from either end",
                        "ours": where, "margin": margin, "se": None, "within_noise": False,

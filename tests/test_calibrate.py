@@ -74,10 +74,11 @@ def test_scored_cases_and_backward_ensemble(tmp_path, capsys):
     assert score({"bw": {"direction": "none"}}, ["bw"])[0] == pytest.approx(3.0)
     # an ensemble is also charged the share of its drops that do not whirl backward (validate's switch
     # asks 7 of 8): a majority of 19 of 32 is not the paper's backward landing
-    ens = {"bw": dict(bw["bw"], counts={"backward": 19, "none": 13})}
+    ens = {"bw": dict(bw["bw"], n=32, counts={"backward": 19, "none": 13})}
     total, parts = score(ens, ["bw"])
     assert parts["bw_share"] == pytest.approx(13 / 32) and total == pytest.approx(0.35 + 13 / 32)
-    assert score({"bw": {"direction": "none", "counts": {"none": 5, "backward": 3}}}, ["bw"])[1]["bw_share"] == 0.625
+    assert score({"bw": {"direction": "none", "n": 8, "counts": {"none": 5, "backward": 3}}}, ["bw"])[1]["bw_share"] == 0.625
+    assert "bw_share" not in score({"bw": dict(bw["bw"], counts={"backward": 1})}, ["bw"])[1]  # one landing: no share
     space = tmp_path / "space.toml"
     space.write_text('samples = 1\nseed = 1\nt_end = 0.3\ncases = ["bw"]\nensemble = 2\n[ranges]\n'
                      '"bearings.DE.worn_drag_torque,bearings.NDE.worn_drag_torque" = {min = 2.0, max = 2.5}\n')

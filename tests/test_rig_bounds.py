@@ -282,3 +282,15 @@ def test_rig_windage_bounds_describe_the_rig_rotor():
         b = sc.bounds[key]
         assert 0.9 * lo <= b.min <= lo and hi <= b.max <= 1.1 * hi, (key, (b.min, b.max), (lo, hi))
         assert lo < get_dotted(sc.raw, key) < hi, key
+
+
+def test_a_tied_unknown_is_one_rig_row_that_fails_when_the_rig_breaks_the_tie(tmp_path):
+    """The worn fit sets C_rib at both bearings as one unknown (a tied range): the rig table gives it
+    one row, and a rig whose two values differ fails it, naming the tie."""
+    import rotorlanding.validate as v
+
+    assert v.tied_followers() == {"bearings.NDE.c_rib": "bearings.DE.c_rib"}
+    overlay = tmp_path / "rig.toml"
+    overlay.write_text("[bearings.NDE]\nc_rib = 3000.0\n")
+    (row,) = [c for c in v.rig_checks(rig=overlay) if "c_rib" in c["check"]]
+    assert not row["pass"] and "bearings.NDE.c_rib NOT the same value, though tied in the fit" in row["ours"], row
