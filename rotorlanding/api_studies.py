@@ -628,7 +628,9 @@ class Calibration:
     @property
     def overrides(self) -> dict:
         """The best design as ``{dotted key: value}`` (tied keys split), for ``Scenario.with_overrides``."""
-        return {k.strip(): self.best[tied] for tied in self.keys for k in tied.split(",")}
+        from .config import tied_keys
+
+        return {k: self.best[tied] for tied in self.keys for k in tied_keys(tied)}
 
     def plot(self, path=None) -> Path:
         """Per searched key: every design's score [-] against the key's value, with its standard

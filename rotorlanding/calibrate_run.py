@@ -51,7 +51,7 @@ import json
 import math
 from pathlib import Path
 
-from .config import override_table, range_spec, sample_ranges, study_file
+from .config import override_table, range_spec, sample_ranges, study_file, tied_keys
 from .ensemble import drop_offsets, ensemble_stats, member_result, share_se
 from .errors import InputError
 from .runner import reduction_cache, run_all, warm_model
@@ -127,7 +127,7 @@ def design_overrides(design: dict, fixed: dict | None = None) -> list[str]:
     """--set strings of a design (tied keys expanded) after the fixed ones."""
     out = [f"{k}={v!r}" for k, v in (fixed or {}).items()]
     for k, v in design.items():
-        out += [f"{kk.strip()}={v!r}" for kk in k.split(",")]
+        out += [f"{kk}={v!r}" for kk in tied_keys(k)]
     return out
 
 

@@ -238,6 +238,11 @@ def range_spec(value, field: str, *, log: bool = False) -> tuple[float, float, b
     return float(lo), float(hi), lg
 
 
+def tied_keys(name: str) -> list[str]:
+    """The scenario keys of a calibration range's name: ``"a,b"`` is one unknown set on both (tied)."""
+    return [k.strip() for k in name.split(",")]
+
+
 @contextmanager
 def study_file(path):
     """``(path, top table)`` of a study's TOML file (sweep, calibration space, fit-modes space):

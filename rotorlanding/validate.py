@@ -159,12 +159,9 @@ def _holdout_sets(rpm: int) -> list[str] | None:
     space = holdout_dir() / f"without_{rpm}rpm_landings.toml"
     best = _holdout_best(rpm)
     if best is not None and space.is_file():
-        from .config import load_toml
+        from .config import load_toml, tied_keys
 
-        sets = []
-        for tied in load_toml(space).get("ranges", {}):
-            sets += [f"{k.strip()}={best[tied]!r}" for k in tied.split(",")]
-        return sets
+        return [f"{k}={best[tied]!r}" for tied in load_toml(space).get("ranges", {}) for k in tied_keys(tied)]
     f = d / "modefit.json"
     if not f.is_file():
         return None
@@ -208,18 +205,18 @@ def placement(value: float, bound, search) -> dict:
 
 def search_bounds(space: Path) -> dict:
     """A calibration file's search ranges as Bounds, tied keys split: key -> Bound (named by the file)."""
-    from .config import load_toml
+    from .config import load_toml, tied_keys
     from .scenario import Bound
 
-    return {k.strip(): Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
-            for tied, rng in load_toml(space).get("ranges", {}).items() for k in tied.split(",")}
+    return {k: Bound(rng["min"], rng["max"], space.name, bool(rng.get("log", False)))
+            for tied, rng in load_toml(space).get("ranges", {}).items() for k in tied_keys(tied)}
 
 
 def heldout_pick_positions(rpm: int) -> list[dict]:
     """Where the held-out fit's first design (``_holdout_best``) sits: each fitted value's position
     in its sourced bound (the rig rotor's ``[bounds]``) and in the fit's search range, and whether it
     is on either (``ON_BOUND``), as ``rig_checks`` asks of the adopted fit. [] without a stored fit."""
-    from .config import load_toml
+    from .config import load_toml, tied_keys
     from .scenario import load_scenario
 
     best, space = _holdout_best(rpm), holdout_dir() / f"without_{rpm}rpm_landings.toml"
@@ -232,7 +229,7 @@ def heldout_pick_positions(rpm: int) -> list[dict]:
     for tied in load_toml(space).get("ranges", {}):  # a design row holds a tied group under its joined name
         value = float(best[tied])
         out += [{"key": key, "value": value, **placement(value, bounds.get(key), ranges[key])}
-                for key in (k.strip() for k in tied.split(","))]
+                for key in tied_keys(tied)]
     return out
 
 
@@ -623,35 +620,28 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
 ON_BOUND = 0.02
 
 
-def calibrated_keys() -> dict[str, tuple[str, dict]]:
-    """Dotted key -> (the calibration file that fits it, its search range {min, max[, log]}): the
-    search ranges of the adopted calibration files (``ADOPTED``), tied keys split."""
-    from .config import load_toml
+def _adopted_ranges():
+    """(calibration file name, its keys, search range) per range of the adopted calibration files
+    (``ADOPTED``); a tied range (``"a,b"``) gives its keys together."""
+    from .config import load_toml, tied_keys
 
-    out = {}
     for name in ADOPTED:
         f = project_root() / "scenarios" / "calibration" / name
         if f.is_file():
             for tied, rng in load_toml(f).get("ranges", {}).items():
-                for key in tied.split(","):
-                    out[key.strip()] = (f"scenarios/calibration/{name}", rng)
-    return out
+                yield name, tied_keys(tied), rng
+
+
+def calibrated_keys() -> dict[str, tuple[str, dict]]:
+    """Dotted key -> (the calibration file that fits it, its search range {min, max[, log]}): the
+    search ranges of the adopted calibration files (``ADOPTED``), tied keys split."""
+    return {key: (f"scenarios/calibration/{name}", rng) for name, keys, rng in _adopted_ranges() for key in keys}
 
 
 def tied_followers() -> dict[str, str]:
-    """Key -> the first key of its tied range (``"a,b"`` in an adopted calibration's ranges: one
-    unknown set on several keys), for every key but the first: the rig table gives a tied unknown
-    one row, not one per key."""
-    from .config import load_toml
-
-    out = {}
-    for name in ADOPTED:
-        f = project_root() / "scenarios" / "calibration" / name
-        if f.is_file():
-            for tied in load_toml(f).get("ranges", {}):
-                keys = [k.strip() for k in tied.split(",")]
-                out |= {k: keys[0] for k in keys[1:]}
-    return out
+    """Key -> the first key of its tied range (one unknown set on several keys), for every key but
+    the first: the rig table gives a tied unknown one row, not one per key."""
+    return {k: keys[0] for _, keys, _ in _adopted_ranges() for k in keys[1:]}
 
 
 #: records of design values chosen on the paper's data by a screen, not a search (scenarios/calibration/):
@@ -767,8 +757,10 @@ def fit_span(cal: str, key: str) -> list[float] | None:
     its best (``stored_run``; None without one). A key fitted tied to others (``"a,b"`` in the
     ranges) has the tied range's span."""
     d = stored_run(cal)
+    from .config import tied_keys
+
     spans = {} if d is None else (d.get("within_noise_span") or {})
-    return next((v for tied, v in spans.items() if key in (k.strip() for k in tied.split(","))), None)
+    return next((v for tied, v in spans.items() if key in tied_keys(tied)), None)
 
 
 #: Table rows a stored calibration run records per design (``calibrate``'s unscored Table 2 numbers of

@@ -64,7 +64,6 @@ def on_bound(r: dict, bounds: dict, ranges: dict | None = None) -> bool:
     return any(placement(r[k], bounds.get(k), ranges.get(k))["on_bound"] for k in KEYS)
 
 
-
 def heldout(rows: list[dict], rpm: int, drops: int, ranges: dict | None = None) -> dict:
     """The fit without ``rpm``: its designs in order, the set within its noise, and what each of
     them predicts at ``rpm`` (DE direction, forward drops, frequency against the experiment). A
