@@ -294,3 +294,27 @@ def test_a_tied_unknown_is_one_rig_row_that_fails_when_the_rig_breaks_the_tie(tm
     overlay.write_text("[bearings.NDE]\nc_rib = 3000.0\n")
     (row,) = [c for c in v.rig_checks(rig=overlay) if "c_rib" in c["check"]]
     assert not row["pass"] and "bearings.NDE.c_rib NOT the same value, though tied in the fit" in row["ours"], row
+
+
+def test_screen_sleeve_loads_are_the_statics_of_two_supports():
+    """docs/studies/rotor_rise_screen.py's static sleeve loads (session 32: Table 1's onset follows the
+    DE's) against the lever rule by hand: a uniform 1 m shaft on sleeves at 0.2 and 0.8 m with a 10 kg
+    disk overhung at 1.0 m; and the rig rotor's loads add up to its weight."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("rotor_rise_screen", ROOT / "docs" / "studies" / "rotor_rise_screen.py")
+    rs = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(rs)
+    d = {"rotor": {"name": "t", "materials": {"steel": {"youngs_modulus": 2.1e11, "density": 7850.0, "poisson_ratio": 0.3}},
+                   "sections": [{"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 4}],
+                   "disks": [{"name": "d", "position": 1.0, "mass": 10.0, "polar_inertia": 0.05, "transverse_inertia": 0.03}],
+                   "stations": {"NDE_sleeve": 0.2, "DE_sleeve": 0.8}}}
+    g = 9.81
+    shaft = 7850.0 * math.pi / 4 * 0.05 ** 2 * 1.0
+    de = (shaft * g * (0.5 - 0.2) + 10.0 * g * (1.0 - 0.2)) / 0.6
+    nde, de_s = rs.sleeve_loads(d)
+    assert de_s == pytest.approx(de, rel=1e-12)
+    assert nde == pytest.approx((shaft + 10.0) * g - de, rel=1e-12)
+    rig = load_toml(ROOT / "scenarios" / "rig_rotor.toml")
+    from rotorlanding.rotor import rotor_from_dict
+    assert sum(rs.sleeve_loads(rig)) == pytest.approx(rotor_from_dict(rig).mass * g, rel=1e-12)

@@ -126,6 +126,25 @@ def screen_seed(args) -> list[dict]:
     return out
 
 
+def sleeve_loads(d: dict) -> tuple[float, float]:
+    """Static loads [N] on the NDE and DE sleeves of a rotor resting on its two catcher bearings: rigid
+    statics, exact for two supports (the motor coupling's lateral stiffness is 0 in the rig rotor file;
+    a stiffer coupling would carry part of it). Session 32: Table 1's onset follows the DE's load
+    (docs/calibration.md "Session 32")."""
+    from rotorlanding.rotor import rotor_from_dict
+
+    r = rotor_from_dict(d)
+    items, x = [], 0.0
+    for sec in r.sections:
+        items += [(s.area * sec.length * s.material.density, x + sec.length / 2) for s in sec.parts]
+        x += sec.length
+    items += [(k.mass, k.position) for k in r.disks]
+    xn, xd = r.stations["NDE_sleeve"], r.stations["DE_sleeve"]
+    weight = sum(m for m, _ in items) * 9.81
+    de = sum(m * 9.81 * (xi - xn) for m, xi in items) / (xd - xn)
+    return weight - de, de
+
+
 def clearance(r: dict) -> float:
     """The smallest share of its range's width between any drawn value and the nearer end."""
     pos = [(r["vals"][k] - a) / (b - a) for k, (a, b) in DRAWN.items()]
@@ -157,6 +176,7 @@ def main(argv=None) -> int:
                     help="one radial AMB design: the NDE stack drawn equal to the DE's (session 29)")
     ap.add_argument("--margin", type=float, default=0.0,
                     help="rank only rotors whose every drawn value lies this share of its range from either end")
+    ap.add_argument("--top", type=int, default=10, help="ranked rotors printed")
     a = ap.parse_args(argv)
     with ProcessPoolExecutor(a.workers) as ex:
         rows = [r for part in ex.map(screen_seed, [(s, a.samples, a.same_amb) for s in SEEDS]) for r in part]
@@ -172,12 +192,16 @@ def main(argv=None) -> int:
           f"median {np.median(rise):.3f}, 99th percentile {np.quantile(rise, 0.99):.3f}, max {rise.max():.3f} "
           "(measured whirl 77 / 65 = 1.185)")
     print(f"ranked (mode at 7000 rpm within {F7000_WINDOW_HZ[0]:g}-{F7000_WINDOW_HZ[1]:g} Hz"
-          + (f", every drawn value >= {a.margin:.0%} of its range from either end" if a.margin else "") + "), first 10:")
-    print("seed sample | rise 10000/7000 | rise 7000/3000 | modes 3000 / 7000 / 10000 [Hz]")
-    for r in ranking(rows, a.margin)[:10]:
+          + (f", every drawn value >= {a.margin:.0%} of its range from either end" if a.margin else "") + f"), first {a.top}:")
+    print("seed sample | rise 10000/7000 | rise 7000/3000 | modes 3000 / 7000 / 10000 [Hz] | static load NDE / DE [N]")
+    from rotorlanding.config import load_toml
+
+    base = load_toml(ROOT / "scenarios" / "rig_rotor.toml")
+    for r in ranking(rows, a.margin)[:a.top]:
         f1 = [x[0] for x in r["modes_hz"]]
+        loads = sleeve_loads(rotor_data(base, r["vals"]))
         print(f"{r['seed']} {r['sample']} | {r['rise_10000_7000']:.3f} | {r['rise_7000_3000']:.3f} | "
-              + " / ".join(f"{x:.1f}" for x in f1))
+              + " / ".join(f"{x:.1f}" for x in f1) + f" | {loads[0]:.0f} / {loads[1]:.0f}")
     return 0
 
 

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Session 32 (docs/studies/onset_probe/README.md): run from the repository root; OUT=dir to choose the output.
+set -euo pipefail
+run() { tag=$1; S=$2; n=$3; shift 3; python docs/studies/ensemble.py $S $n "$@" --out ${OUT:-onset_probe_out} --tag $tag ; }
+for spec in "9 0.0678 0.03442 271" "11 0.08286 0.04239 292" "13 0.09793 0.05054 314"; do
+  set -- $spec; m=$1; ip=$2; it=$3; w=$4
+  tw=$(python -c "print(round(2.790095721727786*$w/247.6,3))")
+  D="rotor.disks.2.mass=$m rotor.disks.2.polar_inertia=$ip rotor.disks.2.transverse_inertia=$it"
+  run td${m}_bw scenarios/paper/backward_whirl_landing.toml 16 $D bearings.DE.worn_drag_torque=$tw
+  run td${m}_fw7000 scenarios/paper/forward_whirl_landing.toml 8 $D
+done
+# the heaviest variant (deheavy*, fw*_deheavy): thrust disk 14.3 kg (session 28's) and coupling hub 8.0 kg (its
+# bound's top), T_w 4.1 N m:
+H="rotor.disks.2.mass=14.3 rotor.disks.2.polar_inertia=0.1154 rotor.disks.2.transverse_inertia=0.0595 rotor.disks.3.mass=8.0 rotor.disks.3.polar_inertia=0.01665 rotor.disks.3.transverse_inertia=0.0110"
+run deheavy scenarios/paper/backward_whirl_landing.toml 16 $H
+run deheavy_nodrag scenarios/paper/backward_whirl_landing.toml 16 $H effects.worn_bearing_drag=false
+run deheavy_T41 scenarios/paper/backward_whirl_landing.toml 16 $H bearings.DE.worn_drag_torque=4.1
+run deheavy_T41_015 scenarios/paper/backward_whirl_landing.toml 16 $H bearings.DE.worn_drag_torque=4.1 contact.mu_rad=0.15
+run fw7000_deheavy scenarios/paper/forward_whirl_landing.toml 8 $H
+run fw10000_deheavy scenarios/paper/forward_whirl_10000rpm.toml 8 $H
+run fw3000_deheavy scenarios/paper/forward_whirl_3000rpm.toml 8 $H
