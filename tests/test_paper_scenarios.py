@@ -216,6 +216,19 @@ def test_validation_judges_the_ensemble_and_the_paper_measuring_node():
     assert rise["within_noise"] and rise["se"] > 1.5  # the 7000 rpm median's error; 75.5 - 48 is clear of it
 
 
+def test_onset_spread_counts_drops_in_the_paper_band():
+    """The onset note counts the backward drops that start inside Table 1's band (0.4 +/- 0.04 s, the
+    band rule) and from 0.2 s on; calm drops and drops without an onset are not counted."""
+    from rotorlanding.validate import onset_spread
+
+    ms = [{"direction": "backward", "onset_s": t} for t in (0.0, 0.025, 0.19, 0.2, 0.36, 0.44, 0.45)]
+    ms += [{"direction": "none", "onset_s": None}, {"direction": "backward", "onset_s": None},
+           {"direction": "forward", "onset_s": 0.4}]
+    assert onset_spread(ms) == ("Of the 7 backward drops, 2 start inside the paper's band (0.36-0.44 s) "
+                                "and 4 from 0.2 s on.")
+    assert onset_spread([{"direction": "none", "onset_s": None}]) == ""
+
+
 def test_band_rule_margins_and_provenance():
     """Band = max(10 % of the experiment, the paper's own simulation error); a value just outside
     fails, just inside passes; the margin's standard error flags a verdict that hangs on noise;
