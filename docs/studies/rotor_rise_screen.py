@@ -129,8 +129,8 @@ def screen_seed(args) -> list[dict]:
 def sleeve_loads(d: dict) -> tuple[float, float]:
     """Static loads [N] on the NDE and DE sleeves of a rotor resting on its two catcher bearings: rigid
     statics, exact for two supports (the motor coupling's lateral stiffness is 0 in the rig rotor file;
-    a stiffer coupling would carry part of it). Session 32: Table 1's onset follows the DE's load
-    (docs/calibration.md "Session 32")."""
+    a stiffer coupling would carry part of it). Session 32: Table 1's onset follows the DE end's mass,
+    for which the DE's static load is the readable proxy (docs/calibration.md "Session 32")."""
     from rotorlanding.rotor import rotor_from_dict
 
     r = rotor_from_dict(d)
