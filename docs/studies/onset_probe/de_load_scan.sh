@@ -9,6 +9,12 @@ for spec in "9 0.0678 0.03442 271" "11 0.08286 0.04239 292" "13 0.09793 0.05054 
   run td${m}_bw scenarios/paper/backward_whirl_landing.toml 16 $D bearings.DE.worn_drag_torque=$tw
   run td${m}_fw7000 scenarios/paper/forward_whirl_landing.toml 8 $D
 done
+# a stronger worn drag on the 11 and 13 kg disks (td11_T36, td11_T40, td13_T39)
+D11="rotor.disks.2.mass=11 rotor.disks.2.polar_inertia=0.08286 rotor.disks.2.transverse_inertia=0.04239"
+D13="rotor.disks.2.mass=13 rotor.disks.2.polar_inertia=0.09793 rotor.disks.2.transverse_inertia=0.05054"
+run td11_T36_bw scenarios/paper/backward_whirl_landing.toml 16 $D11 bearings.DE.worn_drag_torque=3.6
+run td11_T40_bw scenarios/paper/backward_whirl_landing.toml 16 $D11 bearings.DE.worn_drag_torque=4.0
+run td13_T39_bw scenarios/paper/backward_whirl_landing.toml 16 $D13 bearings.DE.worn_drag_torque=3.9
 # the heaviest variant (deheavy*, fw*_deheavy): thrust disk 14.3 kg (session 28's) and coupling hub 8.0 kg (its
 # bound's top), T_w 4.1 N m:
 H="rotor.disks.2.mass=14.3 rotor.disks.2.polar_inertia=0.1154 rotor.disks.2.transverse_inertia=0.0595 rotor.disks.3.mass=8.0 rotor.disks.3.polar_inertia=0.01665 rotor.disks.3.transverse_inertia=0.0110"
