@@ -15,6 +15,7 @@ D13="rotor.disks.2.mass=13 rotor.disks.2.polar_inertia=0.09793 rotor.disks.2.tra
 run td11_T36_bw scenarios/paper/backward_whirl_landing.toml 16 $D11 bearings.DE.worn_drag_torque=3.6
 run td11_T40_bw scenarios/paper/backward_whirl_landing.toml 16 $D11 bearings.DE.worn_drag_torque=4.0
 run td13_T39_bw scenarios/paper/backward_whirl_landing.toml 16 $D13 bearings.DE.worn_drag_torque=3.9
+run td13_T39_bw015 scenarios/paper/backward_whirl_landing.toml 16 $D13 bearings.DE.worn_drag_torque=3.9 contact.mu_rad=0.15
 # the heaviest variant (deheavy*, fw*_deheavy): thrust disk 14.3 kg (session 28's) and coupling hub 8.0 kg (its
 # bound's top), T_w 4.1 N m:
 H="rotor.disks.2.mass=14.3 rotor.disks.2.polar_inertia=0.1154 rotor.disks.2.transverse_inertia=0.0595 rotor.disks.3.mass=8.0 rotor.disks.3.polar_inertia=0.01665 rotor.disks.3.transverse_inertia=0.0110"
