@@ -111,9 +111,10 @@ def _onset_note(outside: bool = False) -> str:
             "`worn_drag_growth_angle`), and that angle was calibrated with the drag torque on this table, "
             "scored on this ensemble's drops (`scenarios/calibration/worn_bearing.toml`): the onset row is "
             "a fitted number, not a prediction (docs/calibration.md, session 8)."
-            + (" What the fit could not reach: the whirl is seeded while the race spins up, at the first "
-               "impacts; in session 32 only a heavier DE end (which cost Table 2's DE force) or a race lighter "
-               "than its bound moved the drops' onsets late (docs/calibration.md, session 32)." if outside else ""))
+            + (" What the fit could not reach, as session 32 found it on the session-31 rig (docs/calibration.md, "
+               "session 32): there the whirl starts at the first impacts, while the race spins up, and only a "
+               "heavier DE end (which cost Table 2's DE force) or a race lighter than its bound moved the "
+               "drops' onsets late." if outside else ""))
 
 
 #: the cases whose ensemble members the landing figure reads back (its representative drops); the
@@ -1314,10 +1315,9 @@ def report_markdown(result: dict) -> str:
             lines += [f"The onset is a random variable of the drop: the backward drops start whirling between "
                       f"{lo:.3g} and {hi:.3g} s (median {bw['onset_s']:.3g} s"
                       + (f", standard error of the median {se:.2g} s" if se is not None else "") + "). "
-                      + onset_spread(bw["members"]) + " "
-                      + _onset_note(abs(bw["onset_s"] - paper()["table1"]["experimental"]["onset_s"])
+                      + " ".join(x for x in (onset_spread(bw["members"]), _onset_note(abs(bw["onset_s"] - paper()["table1"]["experimental"]["onset_s"])
                                     > band(paper()["table1"]["simulated"]["onset_s"],
-                                           paper()["table1"]["experimental"]["onset_s"])), ""]
+                                           paper()["table1"]["experimental"]["onset_s"]))) if x), ""]
     for rpm in paper()["fig39"]["speed_rpm"]:
         e = ensembles.get(f"forward_{rpm}")
         if e and e["direction"] == "forward" and _elsewhere(e):

@@ -221,7 +221,7 @@ def test_onset_spread_counts_drops_in_the_paper_band():
     band rule) and from 0.2 s on; calm drops and drops without an onset are not counted."""
     from rotorlanding.validate import onset_spread
 
-    ms = [{"direction": "backward", "onset_s": t} for t in (0.0, 0.025, 0.19, 0.2, 0.36, 0.44, 0.45)]
+    ms = [{"direction": "backward", "onset_s": t} for t in (0.0, 0.025, 0.19, 0.2, 0.361, 0.439, 0.45)]
     ms += [{"direction": "none", "onset_s": None}, {"direction": "backward", "onset_s": None},
            {"direction": "forward", "onset_s": 0.4}]
     assert onset_spread(ms) == ("Of the 7 backward drops, 2 start inside the paper's band (0.36-0.44 s) "

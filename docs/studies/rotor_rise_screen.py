@@ -129,9 +129,11 @@ def screen_seed(args) -> list[dict]:
 def sleeve_loads(d: dict) -> tuple[float, float]:
     """Static loads [N] on the NDE and DE sleeves of a rotor resting on its two catcher bearings: rigid
     statics, exact for two supports (the motor coupling's lateral stiffness is 0 in the rig rotor file;
-    a stiffer coupling would carry part of it). Session 32: Table 1's onset follows the DE end's mass,
-    for which the DE's static load is the readable proxy (docs/calibration.md "Session 32")."""
+    a stiffer coupling would carry part of it); a tapered section's mass is put at its mid-length.
+    Session 32: Table 1's onset follows the DE end's mass, for which the DE's static load is the
+    readable proxy (docs/calibration.md "Session 32")."""
     from rotorlanding.rotor import rotor_from_dict
+    from rotorlanding.timoshenko import GRAVITY
 
     r = rotor_from_dict(d)
     items, x = [], 0.0
@@ -140,8 +142,8 @@ def sleeve_loads(d: dict) -> tuple[float, float]:
         x += sec.length
     items += [(k.mass, k.position) for k in r.disks]
     xn, xd = r.stations["NDE_sleeve"], r.stations["DE_sleeve"]
-    weight = sum(m for m, _ in items) * 9.81
-    de = sum(m * 9.81 * (xi - xn) for m, xi in items) / (xd - xn)
+    weight = sum(m for m, _ in items) * GRAVITY
+    de = sum(m * GRAVITY * (xi - xn) for m, xi in items) / (xd - xn)
     return weight - de, de
 
 

@@ -27,7 +27,7 @@ run fw7000_deheavy scenarios/paper/forward_whirl_landing.toml 8 $H
 run fw10000_deheavy scenarios/paper/forward_whirl_10000rpm.toml 8 $H
 run fw3000_deheavy scenarios/paper/forward_whirl_3000rpm.toml 8 $H
 # A static DE load without mass (sl*): needs static_de_load_probe.patch in a scratch checkout (as the velocity-
-# weakening probe, README), then e.g.
+# weakening probe, see the head of run.sh), then e.g.
 #   PYTHONPATH=/tmp/sl SL_DE_N=115 python /tmp/sl/docs/studies/ensemble.py scenarios/paper/backward_whirl_landing.toml 16 \
 #       bearings.DE.worn_drag_torque=4.08 --out $OUT --tag sl115_bw
 # (sl65: 65 N, T_w 3.52; sl115: 115 N, T_w 4.08; _fw7000: the forward 7000 rpm landing, 8 drops; _bw015: mu_rad 0.15)

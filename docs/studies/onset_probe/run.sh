@@ -7,7 +7,7 @@
 # then  PYTHONPATH=/tmp/vw VW_R=0.5 VW_VC=10 NUMBA_CACHE_DIR=/tmp/vwcache_<tag> python /tmp/vw/docs/studies/ensemble.py ...
 # (a separate numba cache per (VW_R, VW_VC): the kernels are cached and read the two as compile-time constants).
 set -euo pipefail
-OUT=${1:-onset_probe_out}
+OUT=${1:-${OUT:-onset_probe_out}}
 S=scenarios/paper/backward_whirl_landing.toml
 run() { tag=$1; shift; python docs/studies/ensemble.py "$S" 16 "$@" --out "$OUT" --tag "$tag"; }
 RI="bearings.DE.inner_race_inertia=2.1e-4 bearings.NDE.inner_race_inertia=2.1e-4"
