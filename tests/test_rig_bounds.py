@@ -308,7 +308,9 @@ def test_screen_sleeve_loads_are_the_statics_of_two_supports():
     d = {"rotor": {"name": "t", "materials": {"steel": {"youngs_modulus": 2.1e11, "density": 7850.0, "poisson_ratio": 0.3}},
                    "sections": [{"length": 1.0, "outer_diameter": 0.05, "material": "steel", "elements": 4}],
                    "disks": [{"name": "d", "position": 1.0, "mass": 10.0, "polar_inertia": 0.05, "transverse_inertia": 0.03}],
-                   "stations": {"NDE_sleeve": 0.2, "DE_sleeve": 0.8}}}
+                   "stations": {"NDE_sleeve": 0.2, "DE_sleeve": 0.8},
+                   "supports": [{"station": "NDE_sleeve", "kyy": 3.6e7, "kzz": 3.6e7},
+                                {"station": "DE_sleeve", "kyy": 3.6e7, "kzz": 3.6e7}]}}
     from rotorlanding.timoshenko import GRAVITY as g
     shaft = 7850.0 * math.pi / 4 * 0.05 ** 2 * 1.0
     de = (shaft * g * (0.5 - 0.2) + 10.0 * g * (1.0 - 0.2)) / 0.6

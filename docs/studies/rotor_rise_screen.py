@@ -127,24 +127,21 @@ def screen_seed(args) -> list[dict]:
 
 
 def sleeve_loads(d: dict) -> tuple[float, float]:
-    """Static loads [N] on the NDE and DE sleeves of a rotor resting on its two catcher bearings: rigid
-    statics, exact for two supports (the motor coupling's lateral stiffness is 0 in the rig rotor file;
-    a stiffer coupling would carry part of it); a tapered section's mass is put at its mid-length.
-    Session 32: Table 1's onset follows the DE end's mass, for which the DE's static load is the
-    readable proxy (docs/calibration.md "Session 32")."""
+    """Static loads [N] on the NDE and DE sleeves of a rotor resting on its catcher supports: the
+    reactions -k u of the supports at the two sleeves under the FE model's own gravity load, the
+    rotor file's supports all in place (``rotor_with`` puts the catcher supports at the sleeves; a
+    motor coupling with lateral stiffness takes its share), as docs/studies/journal_mode_search.py
+    computes them. Session 32: Table 1's onset follows the DE end's mass, for which the DE's static
+    load is the readable proxy (docs/calibration.md "Session 32")."""
+    from rotorlanding.reduction import full_model
     from rotorlanding.rotor import rotor_from_dict
-    from rotorlanding.timoshenko import GRAVITY
+    from rotorlanding.timoshenko import assemble
 
-    r = rotor_from_dict(d)
-    items, x = [], 0.0
-    for sec in r.sections:
-        items += [(s.area * sec.length * s.material.density, x + sec.length / 2) for s in sec.parts]
-        x += sec.length
-    items += [(k.mass, k.position) for k in r.disks]
-    xn, xd = r.stations["NDE_sleeve"], r.stations["DE_sleeve"]
-    weight = sum(m for m, _ in items) * GRAVITY
-    de = sum(m * GRAVITY * (xi - xn) for m, xi in items) / (xd - xn)
-    return weight - de, de
+    fe = assemble(rotor_from_dict(d))
+    system = full_model(fe).with_supports()
+    u = np.linalg.solve(system.K, system.gravity_load())
+    z = {s.station: -s.kzz * u[fe.dof(s.station, "z")] for s in fe.rotor.supports}
+    return float(z["NDE_sleeve"]), float(z["DE_sleeve"])
 
 
 def clearance(r: dict) -> float:
