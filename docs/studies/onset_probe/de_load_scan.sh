@@ -31,3 +31,14 @@ run fw3000_deheavy scenarios/paper/forward_whirl_3000rpm.toml 8 $H
 #   PYTHONPATH=/tmp/sl SL_DE_N=115 python /tmp/sl/docs/studies/ensemble.py scenarios/paper/backward_whirl_landing.toml 16 \
 #       bearings.DE.worn_drag_torque=4.08 --out $OUT --tag sl115_bw
 # (sl65: 65 N, T_w 3.52; sl115: 115 N, T_w 4.08; _fw7000: the forward 7000 rpm landing, 8 drops; _bw015: mu_rad 0.15)
+# Session 33: the DE ribbon's damping alone raised, on the rig and on the 13 kg thrust disk (s33_*)
+for c in 1e4 2e4 4e4; do
+  run s33_rig_c$c scenarios/paper/forward_whirl_landing.toml 8 bearings.DE.c_rib=$c
+  run s33_td13_c$c scenarios/paper/forward_whirl_landing.toml 8 $D13 bearings.DE.c_rib=$c
+done
+run s33_td13_c8e4 scenarios/paper/forward_whirl_landing.toml 8 $D13 bearings.DE.c_rib=8e4
+run s33_td13_c4e4_fw10000 scenarios/paper/forward_whirl_10000rpm.toml 8 $D13 bearings.DE.c_rib=4e4
+run s33_td13_c4e4_fw3000 scenarios/paper/forward_whirl_3000rpm.toml 8 $D13 bearings.DE.c_rib=4e4
+run s33_td13_T39_c2e4_bw scenarios/paper/backward_whirl_landing.toml 16 $D13 bearings.DE.worn_drag_torque=3.9 bearings.DE.c_rib=2e4
+run s33_td13_T39_c4e4_bw scenarios/paper/backward_whirl_landing.toml 16 $D13 bearings.DE.worn_drag_torque=3.9 bearings.DE.c_rib=4e4
+run s33_td13_T60_c4e4_bw scenarios/paper/backward_whirl_landing.toml 16 $D13 bearings.DE.worn_drag_torque=6.0 bearings.DE.c_rib=4e4
