@@ -6,7 +6,7 @@ Tables 1-2, Fig. 39) and writes ``validation.json``, ``validation.md`` (the repo
 into ``--out``; ``--publish docs`` also replaces ``docs/validation.md`` (generated, never edited by
 hand). Each acceptance check states
 its rule, margin and the margin's standard error; "pass" is computed, never typed. Every case is
-run centred (per-case figures) and as an ensemble of 8 drops (32 for the backward landing) from a
+run centred (per-case figures) and as an ensemble of 8 drops (32 for the backward, 3000 and 7000 rpm landings) from a
 5 um circle (``ENSEMBLE``), and judged on the ensemble; the studies (``studies``: the mu_rad switch,
 32 drops; the ribbon variants, 8; the held-out speeds, 16) are ensembles only. Groups of checks: every number of
 the tables (with fitted/predicted labels), the paper's causes, the held-out speeds, and the rig's
@@ -73,7 +73,11 @@ QUICK_T_END = 0.5
 #: and both sides of the mu_rad switch sit near 7 of 8 (27-30 of 32 on the DE-worn bearing), where an
 #: 8- or 16-drop count passes or fails on the draw. Its calibration
 #: (scenarios/calibration/worn_bearing.toml, ``ensemble``) scores the same drops.
-ENSEMBLE = {key: 32 if key == "backward_whirl" else 8 for key in CASES}
+#: The 3000 and 7000 rpm combined landings have 32 since session 33: on 8 drops two of their table
+#: rows (Fig. 39's 3000 rpm frequency, Table 2's force maximum) passed by less than their standard
+#: error. 8 of the 32 points are the rotor fit's 8 (equal spacing from the same start), so the fitted
+#: rows are judged on a superset of the drops the fit scored.
+ENSEMBLE = {key: 32 if key in ("backward_whirl", "forward_3000", "forward_7000") else 8 for key in CASES}
 #: drops of each ribbon variant (``studies``); the switch's calm side has as many as its backward
 #: side (``SWITCH_DROPS``), a held-out speed ``HELDOUT_DROPS``
 STUDY_DROPS = 8
@@ -134,16 +138,20 @@ GALLERY = (
      "(Table 2) landings: each ensemble's representative drop (of a whirling ensemble the drop whose "
      "onset is nearest the median onset, of the calm one the drop whose peak displacement is nearest "
      "the median), the radial clearance drawn, the last 50 ms zoomed."),
-    ("forward_7000/forces.png", "forward_7000_forces.png",
-     "7000 rpm combined landing (Table 2), centred drop: force on the rotor at each bearing, positive "
-     "up, the sign of the paper's tables."),
-    ("forward_7000/orbits.png", "forward_7000_orbits.png",
-     "7000 rpm combined landing, centred drop: journal orbits relative to the inner race with the "
-     "clearance circle (top) and absolute, in the housing frame (bottom; they include the race, "
+    ("forward_7000_representative/forces.png", "forward_7000_forces.png",
+     "7000 rpm combined landing (Table 2), the ensemble's representative drop (as above): force on the "
+     "rotor at each bearing, positive up, the sign of the paper's tables."),
+    ("forward_7000_representative/orbits.png", "forward_7000_orbits.png",
+     "7000 rpm combined landing, the representative drop: journal orbits relative to the inner race with "
+     "the clearance circle (top) and absolute, in the housing frame (bottom; they include the race, "
      "ball-set and ribbon deflection, so they run outside the clearance circle)."),
-    ("backward_whirl/orbits.png", "backward_whirl_orbits.png",
-     "Backward-whirl landing (Table 1), centred drop: orbits as above."),
+    ("backward_whirl_representative/orbits.png", "backward_whirl_orbits.png",
+     "Backward-whirl landing (Table 1), the representative drop: orbits as above."),
 )
+#: the cases whose representative drop (``representative_drop``) also gets its forces and orbits drawn
+#: (``FOLDER_representative/``), the figures the report shows of them: a centred drop is one draw of a
+#: chaotic landing (the backward one's centred drop whirls at 53.6 Hz, the ensemble's median 50.7 Hz)
+REPRESENTATIVE_FIGURES = ("forward_7000", "backward_whirl")
 
 
 def _run_case(args):
@@ -475,6 +483,15 @@ def provenance(overlay=None) -> dict:
     why += [f"the rotor's design values were screened for the rise (scenarios/calibration/{name})"
             for name in SCREENS if (cal / name).is_file() and overlay is None]
     out["rise"] = "fitted: " + "; ".join(why) if why else "predicted"
+    # a Fig. 39 frequency a screen read (its ``speeds_rpm``) is fitted twice over: by the landing fit of
+    # the shaft and disk, and by the screen that chose the rotor's other design values on it
+    for name in SCREENS:
+        if (cal / name).is_file() and overlay is None:
+            for rpm in load_screen(cal / name).get("speeds_rpm", []):
+                key = f"fig39_{int(rpm)}"
+                if key in out:
+                    screened = f"the rotor's design values screened on it (scenarios/calibration/{name})"
+                    out[key] = f"fitted: {screened}" if out[key] == "predicted" else f"{out[key]}; {screened}"
     return out
 
 
@@ -682,7 +699,8 @@ def screened_keys() -> dict[str, tuple[str, dict]]:
 
 
 def load_screen(f: Path) -> dict:
-    """A screen's record (``SCREENS``), checked: ``script``, ``chosen`` and ``targets`` texts, ``[ranges]``
+    """A screen's record (``SCREENS``), checked: ``script``, ``chosen`` and ``targets`` texts, ``speeds_rpm``
+    (optional: the Fig. 39 speeds whose frequencies it read), ``[ranges]``
     of {min < max}, ``[geometry]`` of {value, min < max, source}; a bad field is one line naming it."""
     from .config import load_toml
 
@@ -694,10 +712,13 @@ def load_screen(f: Path) -> dict:
     for key in ("script", "chosen", "targets"):
         if not (isinstance(rec.get(key), str) and rec[key].strip()):
             raise InputError(f"{f}: {key}", rec.get(key), "a text saying what the screen was")
-    extra = set(rec) - {"script", "chosen", "targets", "ranges", "geometry"}
+    extra = set(rec) - {"script", "chosen", "targets", "speeds_rpm", "ranges", "geometry"}
     if extra:
         raise InputError(f"{f}: {sorted(extra)[0]}", rec[sorted(extra)[0]],
-                         "unknown field; allowed: script, chosen, targets, ranges, geometry")
+                         "unknown field; allowed: script, chosen, targets, speeds_rpm, ranges, geometry")
+    speeds = rec.get("speeds_rpm", [])
+    if not (isinstance(speeds, list) and all(num(x) and x > 0 for x in speeds)):
+        raise InputError(f"{f}: speeds_rpm", speeds, "a list of the Fig. 39 speeds [rpm] whose frequencies the screen read")
     for key, r in rec.get("ranges", {}).items():
         if not (isinstance(r, dict) and set(r) <= {"min", "max", "log"} and num(r.get("min")) and num(r.get("max"))
                 and r["min"] < r["max"]):
@@ -954,8 +975,10 @@ def ribbon_modal_shift(rig=None, factors=(0.5, 1.0, 1.5), speed_rpm: float = 700
         out["forward_modes_hz"][f] = [float(x) for x in modes if x <= 2.5 * out["modes_hz"][f]]
     f0 = out["modes_hz"][1.0]
     out["shift"] = {f: v / f0 - 1.0 for f, v in out["modes_hz"].items() if f != 1.0}
-    hi = max(f for f in factors if f > 1.0)
-    out["ribbon_energy_share"] = 2.0 * math.log(out["modes_hz"][hi] / f0) / math.log(hi)
+    # 2 d ln f / d ln K_rib between the base and each variant: the ribbon's share of the mode's strain
+    # energy over that step (a softer ribbon takes a larger share, so the two sides differ)
+    out["ribbon_energy_share"] = {f: 2.0 * math.log(v / f0) / math.log(f) for f, v in out["modes_hz"].items()
+                                  if f != 1.0}
     return out
 
 
@@ -1281,8 +1304,10 @@ def report_markdown(result: dict) -> str:
                       f"{rm['k_rib']:.3g} N/m in series with {rm['k_rest']:.3g} N/m of ball set and contact). "
                       "With K_rib " + " / ".join(f"x{f:g}" for f in sh) + " the mode moves "
                       + " / ".join(f"{v:+.1%}" for v in sh.values())
-                      + f", so the ribbon carries about {rm['ribbon_energy_share']:.0%} of the mode's strain energy "
-                      "(2 d ln f / d ln K_rib): the mode's stiffness is the bending main shaft under the overhung "
+                      + ", so the ribbon carries about "
+                      + " / ".join(f"{v:.0%}" for v in rm["ribbon_energy_share"].values())
+                      + " of the mode's strain energy (2 d ln f / d ln K_rib over each step; the softer ribbon takes "
+                      "the larger share): the mode's stiffness is the bending main shaft under the overhung "
                       "actuator disk. By the same rule a ribbon change moves the mode by >= 10 % only when the "
                       "ribbon carries at least about 30 % (x0.5) or 47 % (x1.5) of the mode's strain energy."]
             if moved:
@@ -1499,6 +1524,34 @@ def plot_validation(result: dict, out: Path) -> list[str]:
     files.append("landings_DE_displacement.png")
     save_figure(f, out / files[-1], dpi=110)
     plt.close(f)
+    return files + _representative_figures(result, out)
+
+
+def _representative_figures(result: dict, out: Path) -> list[str]:
+    """Forces and orbits of the representative drop of each case of :data:`REPRESENTATIVE_FIGURES`
+    (the project's own figures, ``plots.plot_all``), into ``out/CASE_representative/``; a case
+    without an ensemble or without that drop's results.h5 gets none."""
+    from .plots import plot_all
+    from .results import read_results
+
+    files = []
+    for key in REPRESENTATIVE_FIGURES:
+        ens = (result.get("ensembles") or {}).get(key)
+        if not ens:
+            continue
+        k = representative_drop(ens)
+        path = out / "ensembles" / f"{key}_drop{k}" / "results.h5"
+        if not path.is_file():
+            continue
+        r = read_results(path)
+        summary = r["summary"]
+        clear = {b: v["clearance_m"] for b, v in summary["bearings"].items()}
+        summary = {**summary, "scenario": f"{summary.get('scenario', key)}, drop {k} of {len(ens['members'])} "
+                                          "(the representative drop)"}
+        folder = out / f"{key}_representative"
+        folder.mkdir(parents=True, exist_ok=True)
+        made = plot_all(folder, r["time_s"], r["series"], summary, clear, which={"orbits", "forces"})
+        files += [f"{folder.name}/{p.name}" for p in made]
     return files
 
 

@@ -397,6 +397,31 @@ def test_representative_drop_is_nearest_the_median_onset():
     assert representative_drop({**ensemble_stats(calm), "members": calm}) == 1
 
 
+def test_report_orbits_and_forces_are_the_representative_drop(tmp_path):
+    """The report's orbit and force figures (validate.GALLERY) are drawn from each ensemble's
+    representative drop, not from the centred one: a short landing stands in for drop 2 of a
+    backward ensemble whose median onset is drop 2's; a case without its drop's results gets none."""
+    from rotorlanding.ensemble import ensemble_stats
+    from rotorlanding.results import read_results
+    from rotorlanding.run import run_scenario
+    from rotorlanding.scenario import load_scenario
+    from rotorlanding.validate import GALLERY, REPRESENTATIVE_FIGURES, _representative_figures, paper_dir
+
+    members = [_member("backward", 50.0, t) for t in (0.025, 0.025, 0.3, 0.33, 0.6)]
+    drop = tmp_path / "ensembles" / "backward_whirl_drop2"
+    run_scenario(load_scenario(paper_dir() / "backward_whirl_landing.toml", ["operating.t_end=0.03"]), drop,
+                 progress=False, plots=False, results=True)
+    assert read_results(drop / "results.h5")["time_s"][-1] == pytest.approx(0.03, abs=1e-3)
+    result = {"ensembles": {"backward_whirl": {**ensemble_stats(members), "members": members},
+                            "forward_7000": {**ensemble_stats(members), "members": members}}}
+    files = _representative_figures(result, tmp_path)
+    assert files == ["backward_whirl_representative/forces.png", "backward_whirl_representative/orbits.png"]
+    assert all((tmp_path / f).stat().st_size > 10_000 for f in files)
+    # every orbit and force figure the report shows is one of these
+    shown = [g[0] for g in GALLERY if "orbits" in g[0] or "forces" in g[0]]
+    assert shown and all(g.split("_representative/")[0] in REPRESENTATIVE_FIGURES for g in shown)
+
+
 def test_backward_onset_note_reads_the_calibrated_growth_angle():
     """The report says the onset row is a calibrated reproduction exactly when the paper's backward
     scenario has a developing worn drag, with the angle from that file."""
@@ -484,7 +509,10 @@ def test_ribbon_modal_shift_is_the_ribbon_share_of_the_mode_strain_energy():
     # the report's numbers: the 7000 rpm mode moves little and the same way as the ribbon
     assert rm["modes_hz"][0.5] < rm["modes_hz"][1.0] < rm["modes_hz"][1.5]
     assert rm["support_n_m"][1.0] == pytest.approx(space["support_stiffness"])
-    assert 0.0 < rm["ribbon_energy_share"] < 0.3 and abs(rm["shift"][1.5]) < 0.10 and abs(rm["shift"][0.5]) < 0.10
+    share = rm["ribbon_energy_share"]
+    assert set(share) == {0.5, 1.5} and all(0.0 < v < 0.3 for v in share.values()) and share[0.5] > share[1.5]
+    assert share[1.5] == pytest.approx(2 * math.log(rm["modes_hz"][1.5] / rm["modes_hz"][1.0]) / math.log(1.5))
+    assert abs(rm["shift"][1.5]) < 0.10 and abs(rm["shift"][0.5]) < 0.10
     # the forward modes listed per factor hold the matched one, ascending, and a next one above it
     for f, modes in rm["forward_modes_hz"].items():
         assert modes == sorted(modes) and rm["modes_hz"][f] in modes and modes[-1] > rm["modes_hz"][f]

@@ -201,6 +201,7 @@ def test_rows_over_fit_spans_the_designs_within_the_fits_noise(monkeypatch, tmp_
     (("script = ", "scriptx = "), "script"),
     (("max = 0.18}", "max = 0.05}"), "ranges.rotor.disks.1.outer_diameter"),
     (("value = 0.1398", "value = \"wide\""), "geometry.NDE_AMB_laminations.outer_diameter"),
+    (("speeds_rpm = [7000, 10000]", "speeds_rpm = [7000, -1]"), "speeds_rpm"),
 ])
 def test_a_bad_screen_record_is_one_line(tmp_path, edit, field):
     """validate.load_screen: a broken screen record names its file and field (the brief's bad-input rule)."""
@@ -234,6 +235,12 @@ def test_rise_label_credits_the_screen_only_for_the_rig_rotor():
 
     assert "screened for the rise" in v.provenance()["rise"]
     assert "screened" not in v.provenance("other_rotor.toml")["rise"]
+    # the Fig. 39 rows the screen read (its speeds_rpm, 7000 and 10000 rpm) say so; 3000 rpm was not read
+    screened = "screened on it (scenarios/calibration/rotor_rise_screen.toml)"
+    prov = v.provenance()
+    assert screened in prov["fig39_7000"] and screened in prov["fig39_10000"] and screened not in prov["fig39_3000"]
+    assert prov["fig39_7000"].startswith("fitted (scenarios/calibration/rotor_landings.toml")
+    assert screened not in v.provenance("other_rotor.toml")["fig39_7000"]
 
 
 def _windage_study():
