@@ -79,6 +79,29 @@ def test_rig_check_flags_a_value_on_its_search_range_end(monkeypatch):
     assert not out["pass"] and "outside the bound" in out["ours"]
 
 
+def test_rig_check_hangs_on_the_pick_when_a_design_within_the_fits_noise_is_on_a_bound(monkeypatch):
+    """A fitted value off its bounds passes, but the row says it hangs on the fit's pick when a design
+    the stored fit cannot tell from its best sits on the bound or on the search range's end (as the
+    held-out rows do); a design outside the fit's noise does not count."""
+    import rotorlanding.validate as v
+
+    sc = load_scenario(PAPER / "backward_whirl_landing.toml")
+    value = sc.bearings["DE"].worn_drag_torque
+    rng = {"min": 0.5 * value, "max": 1.5 * value}
+    monkeypatch.setattr(v, "calibrated_keys", lambda: {"bearings.DE.worn_drag_torque": ("space.toml", rng)})
+    designs = [{"within_noise_of_best": True, "bearings.DE.worn_drag_torque": x} for x in (value, 1.1 * value)]
+    designs.append({"within_noise_of_best": False, "bearings.DE.worn_drag_torque": 0.5 * value})  # on the end
+    run = {"within_noise_span": {"bearings.DE.worn_drag_torque": [value, 1.1 * value]}, "designs": designs}
+    monkeypatch.setattr(v, "stored_run", lambda cal: run)
+    monkeypatch.setattr(v, "STORED_FITS", {"space.toml": "a stored run"})
+    row = v.rig_checks()[0]
+    assert row["pass"] and row["robust"] == {"passing": 2, "n": 2, "holds": True} and v._verdict(row) == "PASS"
+    designs[-1]["within_noise_of_best"] = True  # the design on the search range's end is within the noise
+    row = v.rig_checks()[0]
+    assert row["pass"] and row["robust"] == {"passing": 2, "n": 3, "holds": False}
+    assert v._verdict(row) == "PASS (hangs on the fit's pick: 2 of 3 designs within its noise pass)"
+
+
 def test_rig_value_check_flags_an_uncalibrated_value_outside_its_bound(tmp_path):
     import rotorlanding.validate as v
 
