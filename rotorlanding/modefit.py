@@ -131,6 +131,23 @@ def whirl_modes(rotor_data: dict, speeds_rpm, direction: str = "forward") -> lis
             for sp in speeds_rpm]
 
 
+def static_support_loads(rotor_data: dict) -> dict[str, float]:
+    """Support station -> the vertical load [N] it carries with the rotor at rest on its supports:
+    the reaction -k u of each support under the FE model's own consistent gravity load (the rotor
+    file's supports all in place: the catcher stand-ins at the sleeves and any ``in_landing`` one,
+    e.g. a motor coupling with lateral stiffness, which then takes its share). For a steady whirl
+    it is also the time-mean contact force of a journal on two catcher bearings (the rotor's mean
+    acceleration is zero), which validate reads Table 2's force rows against."""
+    from .reduction import full_model
+    from .rotor import rotor_from_dict
+    from .timoshenko import assemble
+
+    fe = assemble(rotor_from_dict(rotor_data))
+    system = full_model(fe).with_supports()
+    u = np.linalg.solve(system.K, system.gravity_load())
+    return {s.station: float(-s.kzz * u[fe.dof(s.station, "z")]) for s in fe.rotor.supports}
+
+
 def nearest(freqs_hz, target_hz: float) -> float:
     """The frequency of ``freqs_hz`` nearest to the target (nan when there is none)."""
     return min(freqs_hz, key=lambda f: abs(f - target_hz)) if freqs_hz else float("nan")

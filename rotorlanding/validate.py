@@ -349,7 +349,8 @@ TABLE_ROWS = [
 
 #: the displacement rows of each table, (max row, min row): read together as an orbit's centre and
 #: half-range (:func:`orbit_readings`)
-ORBIT_ROWS = {"Table 1": ("t1_disp_max", "t1_disp_min"), "Table 2": ("t2_disp_max", "t2_disp_min")}
+ORBIT_ROWS = {"Table 1": ("t1_disp_max", "t1_disp_min"), "Table 2": ("t2_disp_max", "t2_disp_min"),
+              "Table 2, force": ("t2_force_max", "t2_force_min")}
 
 
 def _forms_text(e: dict) -> str:
@@ -360,7 +361,8 @@ def _forms_text(e: dict) -> str:
 def orbit_readings(checks: list[dict]) -> list[dict]:
     """The vertical displacement max and min of each table read as the DE orbit's centre (max + min)
     / 2 and half-range (max - min) / 2, for the experiment, the paper's simulation and ours: a
-    reading of the table rows, not a check. Why: a whirl orbit's size and its position are two
+    reading of the table rows, not a check (Table 2's force rows as well: ``force_centre_lines``).
+    Why: a whirl orbit's size and its position are two
     different things. Its size follows from the landing (clearance, support deflection, whirl
     amplitude). Its centre, for a full whirl whose force is far above the weight, is the catcher
     bearing's centre in the measurement's frame (a sensor zero, an assembly offset), which a landing
@@ -378,6 +380,57 @@ def orbit_readings(checks: list[dict]) -> list[dict]:
         row["half_range_error"] = _rel(row["ours"]["half_range"], row["experimental"]["half_range"])
         row["paper_half_range_error"] = _rel(row["paper_simulated"]["half_range"], row["experimental"]["half_range"])
         out.append(row)
+    return out
+
+
+def static_loads(rig=None) -> dict[str, float]:
+    """Support station -> its static vertical load [N] in the 7000 rpm combined landing's rotor (the rig's,
+    or the one ``rig`` overlays; ``modefit.static_support_loads``): the DE sleeve's is what Table 2's
+    force rows centre on (``force_centre_lines``)."""
+    from .modefit import static_support_loads
+    from .scenario import load_scenario
+
+    fname, sets = CASES["forward_7000"]
+    sc = load_scenario(paper_dir() / fname, sets, overlays=[rig] if rig else ())
+    return static_support_loads({"rotor": sc.raw["rotor"]})
+
+
+def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "DE_sleeve",
+                       support_n_m: float | None = None) -> list[str]:
+    """What the Table 2 force rows' centre says: over a steady whirl the rotor's mean acceleration is
+    zero, so the time-mean force a catcher bearing puts on the rotor is the rotor's static load on it
+    (two supports: statics alone splits the weight), and for a near-harmonic whirl (max + min) / 2 is
+    that mean. With the DE whirling round its whole clearance, the force minimum is in its band only
+    with a centre of at least (band low end of the maximum + band low end of the minimum) / 2.
+    ``support_n_m``: the landed support's stiffness, with which Table 2's displacement centre reads as
+    the load that presses the race down by as much (centre = -W / K_s)."""
+    o = next((o for o in orbits if o["table"] == "Table 2, force"), None)
+    if o is None or not loads or station not in loads:
+        return []
+    row = {r[0]: r for r in TABLE_ROWS}
+    need = []
+    for key in ("t2_force_max", "t2_force_min"):
+        sim, exp = _paper_values(row[key][3], row[key][4])
+        need.append(exp - band(sim, exp))
+    out = ["", f"Table 2's force rows read the same way: for a steady whirl the time-mean force a catcher bearing "
+            "puts on the rotor is the rotor's static load on it (the rotor's mean acceleration is zero, and two "
+            "supports split the weight by statics alone), and for a near-harmonic whirl (max + min) / 2 is that "
+            f"mean. The experiment's centre is {o['experimental']['centre'] / 1e3:.2g} kN and the paper's own "
+            f"simulation's {o['paper_simulated']['centre'] / 1e3:.2g} kN; ours is "
+            f"{o['ours']['centre'] / 1e3:.2g} kN, on a rotor whose DE sleeve carries {loads[station] / 1e3:.2g} kN "
+            "at rest (`modefit.static_support_loads`). A journal that whirls round its whole clearance, as the "
+            "Fig. 39 DE checks ask of ours, has both force rows in their bands only with a centre of at least "
+            f"({need[0] / 1e3:.3g} + ({need[1] / 1e3:.3g})) / 2 = {(need[0] + need[1]) / 2e3:.3g} kN: a static DE load "
+            f"{(need[0] + need[1]) / 2 / loads[station]:.2g} times ours, or a journal that keeps off the top of its "
+            "race (docs/calibration.md, sessions 16 and 23)."]
+    d = next((x for x in orbits if x["table"] == "Table 2"), None)
+    if d is not None and support_n_m:
+        w = {who: -d[who]["centre"] * support_n_m for who in ("experimental", "ours")}
+        out[-1] += (f" The displacement rows' centres read alike, as a race pressed down by a load W sits W / K_s low "
+                    f"(K_s {support_n_m:.2g} N/m, the fit's landed support): the experiment's "
+                    f"{d['experimental']['centre'] * 1e3:.2g} mm is W = {w['experimental'] / 1e3:.2g} kN, ours "
+                    f"{d['ours']['centre'] * 1e3:.2g} mm is {w['ours'] / 1e3:.2g} kN; the other reading of the "
+                    "experiment's centre is a sensor zero or assembly offset (above).")
     return out
 
 
@@ -1207,7 +1260,8 @@ def report_markdown(result: dict) -> str:
                      f"{closer} | {c['provenance']} |")
     orbits = orbit_readings(ev["checks"])
     if orbits:
-        lines += ["", "The displacement rows read as the orbit's centre, (max + min) / 2, and half-range, (max - min) / 2: "
+        lines += ["", "The displacement rows (and Table 2's force rows, below) read as the orbit's centre, (max + min) / 2, "
+                  "and half-range, (max - min) / 2: "
                   "a reading of the rows above, not a check. A whirl orbit's size follows from the landing. Its "
                   "centre, for a whirl whose force is far above the weight, is the catcher bearing's centre in the "
                   "measurement's frame (a sensor zero, an assembly offset), which the model does not know.", "",
@@ -1221,6 +1275,8 @@ def report_markdown(result: dict) -> str:
 
             lines.append(f"| {o['table']} | {cr(o['experimental'])} | {cr(o['paper_simulated'])} | {cr(o['ours'])} | "
                          f"{o['half_range_error']:+.0%} / {o['paper_half_range_error']:+.0%} |")
+        lines += force_centre_lines(orbits, result.get("static_support_loads_n"),
+                                    support_n_m=((result.get("ribbon_modal") or {}).get("support_n_m") or {}).get(1.0))
     lines += shape_lines(ev["checks"])
     over = result.get("rows_over_fit") or {}
     if over:
@@ -1644,6 +1700,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
                       "case_wall_s": {k: round(v.get("performance", {}).get("wall_s", float("nan")), 2)
                                       for k, v in summaries.items()}}}
     result["ribbon_modal"] = ribbon_modal_shift(rig)
+    result["static_support_loads_n"] = static_loads(rig)
     result["rows_over_fit"] = {} if rig is not None else rows_over_fit()  # the stored fit is of the rig rotor
     result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig), overlay=rig)
     try:

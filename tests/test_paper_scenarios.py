@@ -272,7 +272,7 @@ def test_orbit_reading_splits_the_displacement_rows_into_centre_and_half_range()
     ens = _paper_ensembles(backward_whirl=[_member("backward", 49.0, 0.4, disp=(-3.4e-4, 3.1e-4))] * 16,
                            forward_7000=[_member("forward", 65.0, 0.1, disp=(-4.2e-4, 4.0e-4), force=(-9e3, 10e3))] * 8)
     ev = evaluate_cases(s, ens)
-    t1, t2 = orbit_readings(ev["checks"])
+    t1, t2, _ = orbit_readings(ev["checks"])
     assert t1["table"] == "Table 1" and t2["table"] == "Table 2"
     assert t1["experimental"]["centre"] == pytest.approx(-1e-4) and t1["experimental"]["half_range"] == pytest.approx(3e-4)
     assert t1["paper_simulated"]["centre"] == pytest.approx(-1.5e-5)
@@ -283,7 +283,50 @@ def test_orbit_reading_splits_the_displacement_rows_into_centre_and_half_range()
     assert t2["experimental"]["centre"] == pytest.approx(-7.5e-5) and t2["ours"]["half_range"] == pytest.approx(4.1e-4)
     assert t2["half_range_error"] == pytest.approx((4.1e-4 - 2.25e-4) / 2.25e-4)
     # a table whose displacement rows are missing gives no reading
-    assert orbit_readings([c for c in ev["checks"] if not c["check"].startswith("Table 1")]) == [t2]
+    f2 = orbit_readings(ev["checks"])[2]
+    assert orbit_readings([c for c in ev["checks"] if not c["check"].startswith("Table 1")]) == [t2, f2]
+    # Table 2's force rows the same way: experiment +4.5 / -0.5 kN, centre 2 kN; ours (-9 / +10 kN) 0.5 kN
+    assert f2["table"] == "Table 2, force" and f2["experimental"]["centre"] == pytest.approx(2.0e3)
+    assert f2["paper_simulated"]["centre"] == pytest.approx(1.5e3) and f2["ours"]["centre"] == pytest.approx(0.5e3)
+
+
+def test_force_centre_reading_states_the_static_load_both_force_rows_need():
+    """Table 2's force rows in band with a journal whirling round its clearance need a centre of at
+    least the two bands' low ends averaged: (4.5 - 0.45 + (-0.5 - 1.0)) / 2 = 1.275 kN; the reading
+    gives it against the rotor's static DE load, and says nothing without that load."""
+    from rotorlanding.validate import (
+        CASES,
+        evaluate_cases,
+        force_centre_lines,
+        orbit_readings,
+    )
+
+    ev = evaluate_cases({k: None for k in CASES}, _paper_ensembles(
+        forward_7000=[_member("forward", 65.0, 0.1, force=(-3.0e3, 4.0e3))] * 8))
+    orbits = orbit_readings(ev["checks"])
+    (text,) = [x for x in force_centre_lines(orbits, {"DE_sleeve": 255.0}) if x]
+    assert "(4.05 + (-1.5)) / 2 = 1.27 kN" in text and "5 times ours" in text  # 1275 / 255
+    assert "ours is 0.5 kN" in text and "carries 0.26 kN at rest" in text
+    assert force_centre_lines(orbits, None) == [] and force_centre_lines(orbits, {"NDE_sleeve": 700.0}) == []
+    # with the support's stiffness, the displacement centres as loads: W = -centre K_s (experiment -0.075 mm,
+    # the members' -0.025 mm, at 4e7 N/m: 3 kN and 1 kN)
+    (text,) = [x for x in force_centre_lines(orbits, {"DE_sleeve": 255.0}, support_n_m=4e7) if x]
+    assert "the experiment's -0.075 mm is W = 3 kN, ours -0.025 mm is 1 kN" in text
+
+
+def test_static_support_loads_of_the_rig_rotor_carry_its_weight():
+    """modefit.static_support_loads: the rig rotor's support reactions sum to its weight, the
+    DE sleeve's being validate's reading of Table 2's force centre."""
+    from rotorlanding.config import load_toml
+    from rotorlanding.modefit import static_support_loads
+    from rotorlanding.rotor import rotor_from_dict
+    from rotorlanding.timoshenko import GRAVITY
+    from rotorlanding.validate import project_root, static_loads
+
+    loads = static_loads()
+    assert set(loads) >= {"DE_sleeve", "NDE_sleeve"} and 0 < loads["DE_sleeve"] < loads["NDE_sleeve"]
+    rig = load_toml(project_root() / "scenarios" / "rig_rotor.toml")
+    assert sum(static_support_loads(rig).values()) == pytest.approx(rotor_from_dict(rig).mass * GRAVITY, rel=1e-12)
 
 
 def test_heldout_verdict_is_flagged_when_its_share_of_drops_hangs_on_noise(monkeypatch):
@@ -405,7 +448,12 @@ def test_report_orbits_and_forces_are_the_representative_drop(tmp_path):
     from rotorlanding.results import read_results
     from rotorlanding.run import run_scenario
     from rotorlanding.scenario import load_scenario
-    from rotorlanding.validate import GALLERY, REPRESENTATIVE_FIGURES, _representative_figures, paper_dir
+    from rotorlanding.validate import (
+        GALLERY,
+        REPRESENTATIVE_FIGURES,
+        _representative_figures,
+        paper_dir,
+    )
 
     members = [_member("backward", 50.0, t) for t in (0.025, 0.025, 0.3, 0.33, 0.6)]
     drop = tmp_path / "ensembles" / "backward_whirl_drop2"

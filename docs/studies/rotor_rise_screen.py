@@ -127,21 +127,15 @@ def screen_seed(args) -> list[dict]:
 
 
 def sleeve_loads(d: dict) -> tuple[float, float]:
-    """Static loads [N] on the NDE and DE sleeves of a rotor resting on its catcher supports: the
-    reactions -k u of the supports at the two sleeves under the FE model's own gravity load, the
-    rotor file's supports all in place (``rotor_with`` puts the catcher supports at the sleeves; a
-    motor coupling with lateral stiffness takes its share), as docs/studies/journal_mode_search.py
-    computes them. Session 32: Table 1's onset follows the DE end's mass, for which the DE's static
-    load is the readable proxy (docs/calibration.md "Session 32")."""
-    from rotorlanding.reduction import full_model
-    from rotorlanding.rotor import rotor_from_dict
-    from rotorlanding.timoshenko import assemble
+    """Static loads [N] on the NDE and DE sleeves of a rotor resting on its catcher supports
+    (``rotorlanding.modefit.static_support_loads``: the supports' reactions under the FE model's own
+    gravity load, as docs/studies/journal_mode_search.py computes them). Session 32: Table 1's onset
+    follows the DE end's mass, for which the DE's static load is the readable proxy
+    (docs/calibration.md "Session 32")."""
+    from rotorlanding.modefit import static_support_loads
 
-    fe = assemble(rotor_from_dict(d))
-    system = full_model(fe).with_supports()
-    u = np.linalg.solve(system.K, system.gravity_load())
-    z = {s.station: -s.kzz * u[fe.dof(s.station, "z")] for s in fe.rotor.supports}
-    return float(z["NDE_sleeve"]), float(z["DE_sleeve"])
+    z = static_support_loads(d)
+    return z["NDE_sleeve"], z["DE_sleeve"]
 
 
 def clearance(r: dict) -> float:
