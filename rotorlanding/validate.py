@@ -423,14 +423,16 @@ def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "D
             f"({need[0] / 1e3:.3g} + ({need[1] / 1e3:.3g})) / 2 = {(need[0] + need[1]) / 2e3:.3g} kN: a static DE load "
             f"{(need[0] + need[1]) / 2 / loads[station]:.2g} times ours, or a journal that keeps off the top of its "
             "race (docs/calibration.md, sessions 16 and 23)."]
-    d = next((x for x in orbits if x["table"] == "Table 2"), None)
-    if d is not None and support_n_m:
-        w = {who: -d[who]["centre"] * support_n_m for who in ("experimental", "ours")}
-        out[-1] += (f" The displacement rows' centres read alike, as a race pressed down by a load W sits W / K_s low "
-                    f"(K_s {support_n_m:.2g} N/m, the fit's landed support): the experiment's "
-                    f"{d['experimental']['centre'] * 1e3:.2g} mm is W = {w['experimental'] / 1e3:.2g} kN, ours "
-                    f"{d['ours']['centre'] * 1e3:.2g} mm is {w['ours'] / 1e3:.2g} kN; the other reading of the "
-                    "experiment's centre is a sensor zero or assembly offset (above).")
+    disp = [x for x in orbits if x["table"] in ("Table 1", "Table 2")]
+    if disp and support_n_m:
+        def load(d, who):
+            return f"{d[who]['centre'] * 1e3:.2g} mm is {-d[who]['centre'] * support_n_m / 1e3:.2g} kN"
+
+        out[-1] += (" The displacement rows' centres read alike, as a race pressed down by a load W sits W / K_s low "
+                    f"(K_s {support_n_m:.2g} N/m, the fit's landed support): "
+                    + "; ".join(f"{d['table']}: the experiment's {load(d, 'experimental')}, ours {load(d, 'ours')}"
+                                for d in disp)
+                    + ". The other reading of the experiment's centres is a sensor zero or assembly offset (above).")
     return out
 
 

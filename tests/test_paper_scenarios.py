@@ -311,7 +311,8 @@ def test_force_centre_reading_states_the_static_load_both_force_rows_need():
     # with the support's stiffness, the displacement centres as loads: W = -centre K_s (experiment -0.075 mm,
     # the members' -0.025 mm, at 4e7 N/m: 3 kN and 1 kN)
     (text,) = [x for x in force_centre_lines(orbits, {"DE_sleeve": 255.0}, support_n_m=4e7) if x]
-    assert "the experiment's -0.075 mm is W = 3 kN, ours -0.025 mm is 1 kN" in text
+    assert "Table 2: the experiment's -0.075 mm is 3 kN, ours -0.025 mm is 1 kN" in text
+    assert "Table 1: the experiment's -0.1 mm is 4 kN" in text  # Table 1: +0.2 / -0.4 mm
 
 
 def test_static_support_loads_of_the_rig_rotor_carry_its_weight():
