@@ -267,7 +267,7 @@ def cmd_validate(args) -> int:
     check_cases(args.sets or (), args.rig)
     if args.publish is not None and not Path(args.publish).is_dir():
         raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
-    # both folders checked before 190 landings are run into them: a bad one is one line, now
+    # both folders checked before some 240 landings are run into them: a bad one is one line, now
     check_out_dir(args.out, "--out")
     if args.publish is not None:
         check_out_dir(args.publish, "--publish")

@@ -151,7 +151,13 @@ GALLERY = (
 #: the cases whose representative drop (``representative_drop``) also gets its forces and orbits drawn
 #: (``FOLDER_representative/``), the figures the report shows of them: a centred drop is one draw of a
 #: chaotic landing (the backward one's centred drop whirls at 53.6 Hz, the ensemble's median 50.7 Hz)
-REPRESENTATIVE_FIGURES = ("forward_7000", "backward_whirl")
+REPRESENTATIVE_FIGURES = {"forward_7000": ("forces", "orbits"), "backward_whirl": ("orbits",)}
+
+
+def member_results(out: Path, key: str, k: int) -> Path:
+    """The results.h5 of drop ``k`` of case ``key``'s ensemble in the run folder ``out`` (written for
+    the cases of :data:`FIGURE_CASES` only)."""
+    return out / "ensembles" / f"{key}_drop{k}" / "results.h5"
 
 
 def _run_case(args):
@@ -396,44 +402,50 @@ def static_loads(rig=None) -> dict[str, float]:
 
 
 def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "DE_sleeve",
-                       support_n_m: float | None = None) -> list[str]:
-    """What the Table 2 force rows' centre says: over a steady whirl the rotor's mean acceleration is
-    zero, so the time-mean force a catcher bearing puts on the rotor is the rotor's static load on it
-    (two supports: statics alone splits the weight), and for a near-harmonic whirl (max + min) / 2 is
-    that mean. With the DE whirling round its whole clearance, the force minimum is in its band only
-    with a centre of at least (band low end of the maximum + band low end of the minimum) / 2.
-    ``support_n_m``: the landed support's stiffness, with which Table 2's displacement centre reads as
-    the load that presses the race down by as much (centre = -W / K_s)."""
+                       support_n_m: float | None = None, mean: dict | None = None) -> list[str]:
+    """What the centres of the Table 2 force rows and of the displacement rows say (a reading, not a
+    check). Over a steady whirl the rotor's mean acceleration is zero, so the time-mean force a catcher
+    bearing puts on the rotor is the rotor's static load on it (``loads``; two supports split the
+    weight by statics alone); ``mean``: that time-mean on our representative drop
+    (``_representative_figures``), which tests the statement on our own landing. (max + min) / 2 is the
+    mean only for a harmonic force. Both force rows in their bands ask (max + min) / 2 >= (the low ends
+    of the two bands) / 2 of any signal. ``support_n_m``: the landed support's stiffness, with which a
+    displacement centre reads as the load that presses the race down by as much (centre = -W / K_s)."""
     o = next((o for o in orbits if o["table"] == "Table 2, force"), None)
-    if o is None or not loads or station not in loads:
+    if o is None or not loads or not loads.get(station, 0.0) > 0.0:
         return []
     row = {r[0]: r for r in TABLE_ROWS}
     need = []
     for key in ("t2_force_max", "t2_force_min"):
         sim, exp = _paper_values(row[key][3], row[key][4])
         need.append(exp - band(sim, exp))
-    out = ["", f"Table 2's force rows read the same way: for a steady whirl the time-mean force a catcher bearing "
-            "puts on the rotor is the rotor's static load on it (the rotor's mean acceleration is zero, and two "
-            "supports split the weight by statics alone), and for a near-harmonic whirl (max + min) / 2 is that "
-            f"mean. The experiment's centre is {o['experimental']['centre'] / 1e3:.2g} kN and the paper's own "
-            f"simulation's {o['paper_simulated']['centre'] / 1e3:.2g} kN; ours is "
-            f"{o['ours']['centre'] / 1e3:.2g} kN, on a rotor whose DE sleeve carries {loads[station] / 1e3:.2g} kN "
-            "at rest (`modefit.static_support_loads`). A journal that whirls round its whole clearance, as the "
-            "Fig. 39 DE checks ask of ours, has both force rows in their bands only with a centre of at least "
-            f"({need[0] / 1e3:.3g} + ({need[1] / 1e3:.3g})) / 2 = {(need[0] + need[1]) / 2e3:.3g} kN: a static DE load "
-            f"{(need[0] + need[1]) / 2 / loads[station]:.2g} times ours, or a journal that keeps off the top of its "
-            "race (docs/calibration.md, sessions 16 and 23)."]
+    floor, ours = (need[0] + need[1]) / 2, o["ours"]["centre"]
+    text = ("Table 2's force rows read the same way. Over a steady whirl the time-mean force a catcher bearing puts on "
+            "the rotor is the rotor's static load on it (the rotor's mean acceleration is zero, and two supports split "
+            f"the weight by statics alone): our DE sleeve carries {loads[station] / 1e3:.2g} kN at rest "
+            "(`modefit.static_support_loads`)")
+    if mean:
+        text += (f", and the DE's time-mean force over the representative drop's whirl (drop {mean['drop']}, from "
+                 f"{mean['from_s']:.2g} s) is {mean['mean_n'] / 1e3:.2g} kN")
+    text += (f". (max + min) / 2 is that mean only for a harmonic force: ours is {ours / 1e3:.2g} kN, the impacts' "
+             f"peaks lifting it. The experiment's is {o['experimental']['centre'] / 1e3:.2g} kN and the paper's own "
+             f"simulation's {o['paper_simulated']['centre'] / 1e3:.2g} kN. Both force rows in their bands need at least "
+             f"({need[0] / 1e3:.3g} + ({need[1] / 1e3:.3g})) / 2 = {floor / 1e3:.3g} kN of any signal"
+             + (f", {floor / ours:.2g} times ours" if ours > 0 else "")
+             + ": on a journal that whirls round its whole clearance, as the Fig. 39 DE checks ask of ours, a DE "
+             "carrying several times our static load, or a journal that keeps off the top of its race "
+             "(docs/calibration.md, sessions 16, 23 and 33).")
     disp = [x for x in orbits if x["table"] in ("Table 1", "Table 2")]
     if disp and support_n_m:
         def load(d, who):
             return f"{d[who]['centre'] * 1e3:.2g} mm is {-d[who]['centre'] * support_n_m / 1e3:.2g} kN"
 
-        out[-1] += (" The displacement rows' centres read alike, as a race pressed down by a load W sits W / K_s low "
-                    f"(K_s {support_n_m:.2g} N/m, the fit's landed support): "
-                    + "; ".join(f"{d['table']}: the experiment's {load(d, 'experimental')}, ours {load(d, 'ours')}"
-                                for d in disp)
-                    + ". The other reading of the experiment's centres is a sensor zero or assembly offset (above).")
-    return out
+        text += (" The displacement rows' centres read alike, as a race pressed down by a load W sits W / K_s low "
+                 f"(K_s {support_n_m:.2g} N/m, the fit's landed support): "
+                 + "; ".join(f"{d['table']}: the experiment's {load(d, 'experimental')}, ours {load(d, 'ours')}"
+                             for d in disp)
+                 + ". The other reading of the experiment's centres is a sensor zero or assembly offset (above).")
+    return ["", text]
 
 
 def _paper_values(table: str, key) -> tuple[float, float]:
@@ -491,6 +503,17 @@ def _value(w: dict, table: str, key) -> tuple[float | None, float | None]:
 ADOPTED = ("rotor_landings.toml", "worn_bearing.toml")
 
 
+def screened_speeds(overlay=None) -> dict[int, str]:
+    """Fig. 39 speed [rpm] -> the screen record (``SCREENS``) that read its frequency to choose the rig
+    rotor's design values (its ``speeds_rpm``); none for another rotor given with --rig (``overlay``)."""
+    cal = project_root() / "scenarios" / "calibration"
+    out = {}
+    for name in SCREENS:
+        if (cal / name).is_file() and overlay is None:
+            out |= {int(rpm): f"scenarios/calibration/{name}" for rpm in load_screen(cal / name).get("speeds_rpm", [])}
+    return out
+
+
 def provenance(overlay=None) -> dict:
     """Row key -> how the number relates to our parameters: 'fitted: ...' when an adopted
     calibration file (``ADOPTED``) scores it, else 'predicted'. Read from the calibration files, so
@@ -540,13 +563,11 @@ def provenance(overlay=None) -> dict:
     out["rise"] = "fitted: " + "; ".join(why) if why else "predicted"
     # a Fig. 39 frequency a screen read (its ``speeds_rpm``) is fitted twice over: by the landing fit of
     # the shaft and disk, and by the screen that chose the rotor's other design values on it
-    for name in SCREENS:
-        if (cal / name).is_file() and overlay is None:
-            for rpm in load_screen(cal / name).get("speeds_rpm", []):
-                key = f"fig39_{int(rpm)}"
-                if key in out:
-                    screened = f"the rotor's design values screened on it (scenarios/calibration/{name})"
-                    out[key] = f"fitted: {screened}" if out[key] == "predicted" else f"{out[key]}; {screened}"
+    for rpm, rec in screened_speeds(overlay).items():
+        key = f"fig39_{rpm}"
+        if key in out:
+            screened = f"the rotor's design values screened on it ({rec})"
+            out[key] = f"fitted: {screened}" if out[key] == "predicted" else f"{out[key]}; {screened}"
     return out
 
 
@@ -670,6 +691,7 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
               rib["max_shift"] is not None and rib["max_shift"] >= RIBBON_SHIFT,
               margin=None if rib["max_shift"] is None else rib["max_shift"] - RIBBON_SHIFT, ours=rib["text"],
               se=rib["se"])
+    screened = screened_speeds(overlay)
     for rpm in paper()["fig39"]["speed_rpm"]:
         key = f"heldout_{rpm}"
         if key not in ensembles and key not in s:
@@ -698,7 +720,9 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
                         + ("no sourced bound" if q['bound_position'] is None else f"{q['bound_position']:.1%} of its bound")
                         + f", {q['search_position']:.0%} of the search range" for q in on),
               also=[(v["margin"], v["se"])], paper_experimental=exp, class_margin=v["margin"], class_se=v["se"],
-              provenance="predicted (held out of the rotor fit)", robust=robust, picks=picks)
+              provenance="predicted (held out of the rotor fit)" + (
+                  f"; the rotor's other design values were screened on this speed ({screened[int(rpm)]})"
+                  if int(rpm) in screened else ""), robust=robust, picks=picks)
     checks += rig or []
     groups = {}
     for c in checks:
@@ -771,9 +795,10 @@ def load_screen(f: Path) -> dict:
     if extra:
         raise InputError(f"{f}: {sorted(extra)[0]}", rec[sorted(extra)[0]],
                          "unknown field; allowed: script, chosen, targets, speeds_rpm, ranges, geometry")
-    speeds = rec.get("speeds_rpm", [])
-    if not (isinstance(speeds, list) and all(num(x) and x > 0 for x in speeds)):
-        raise InputError(f"{f}: speeds_rpm", speeds, "a list of the Fig. 39 speeds [rpm] whose frequencies the screen read")
+    speeds, fig39 = rec.get("speeds_rpm", []), [int(x) for x in paper()["fig39"]["speed_rpm"]]
+    if not (isinstance(speeds, list) and all(num(x) and x in fig39 for x in speeds)):
+        raise InputError(f"{f}: speeds_rpm", speeds, "a list of the Fig. 39 speeds whose frequencies the screen read, "
+                         "each one of " + ", ".join(map(str, fig39)) + " rpm")
     for key, r in rec.get("ranges", {}).items():
         if not (isinstance(r, dict) and set(r) <= {"min", "max", "log"} and num(r.get("min")) and num(r.get("max"))
                 and r["min"] < r["max"]):
@@ -1162,6 +1187,12 @@ def _verdict(c: dict) -> str:
            if rb and not rb["holds"] else "")
 
 
+def _speeds_text(speeds) -> str:
+    """"7000 and 10000" (or "3000, 7000 and 10000"; "no" for none)."""
+    xs = [str(int(x)) for x in speeds]
+    return "no" if not xs else xs[0] if len(xs) == 1 else ", ".join(xs[:-1]) + " and " + xs[-1]
+
+
 def _pm(x, se, scale=1.0, nd=3) -> str:
     """``x +/- se`` (scaled)."""
     return _fmt(x, scale, nd) + (f" +/- {se * scale:.2g}" if x is not None and se is not None else "")
@@ -1278,7 +1309,8 @@ def report_markdown(result: dict) -> str:
             lines.append(f"| {o['table']} | {cr(o['experimental'])} | {cr(o['paper_simulated'])} | {cr(o['ours'])} | "
                          f"{o['half_range_error']:+.0%} / {o['paper_half_range_error']:+.0%} |")
         lines += force_centre_lines(orbits, result.get("static_support_loads_n"),
-                                    support_n_m=((result.get("ribbon_modal") or {}).get("support_n_m") or {}).get(1.0))
+                                    support_n_m=((result.get("ribbon_modal") or {}).get("support_n_m") or {}).get(1.0),
+                                    mean=result.get("de_force_mean_n"))
     lines += shape_lines(ev["checks"])
     over = result.get("rows_over_fit") or {}
     if over:
@@ -1333,6 +1365,8 @@ def report_markdown(result: dict) -> str:
                    "held-out fit another: different installs)"))
             lines.append(f"| {c['check']} | {c['rule']} | {c['ours']} | {_fmt(c['margin'])}{se} | {cm} | {span_txt} | "
                          f"{_verdict(c)} | {c.get('provenance', 'predicted')} |")
+        read = sorted(screened_speeds(result.get("rig_overlay")))
+        free = [int(r) for r in paper()["fig39"]["speed_rpm"] if int(r) not in read]
         lines += ["", "Why the rotor was re-chosen, and what two speeds still cannot pin (`docs/calibration.md`, sessions "
                   "26-28; studies, not re-run here): the landed whirl follows the landed rotor's first forward mode. "
                   "On the session-15 rotor that mode rose from 7000 to 10000 rpm by at most 16 %, against 18.5 % "
@@ -1340,9 +1374,10 @@ def report_markdown(result: dict) -> str:
                   "at 3000 rpm. The rig rotor's design values come from a screen of every bounded rotor value "
                   "for that rise (`docs/studies/rotor_rise_screen.py`; since session 30 with one radial AMB design and "
                   "every drawn value at least 5 % inside its range; recorded as the fit it is in "
-                  "`scenarios/calibration/rotor_rise_screen.toml`); the screen reads the 7000 and 10000 rpm "
-                  "frequencies only, so the held-out 7000 and 10000 rpm predictions share that choice with the speed "
-                  "they predict, and only the held-out 3000 rpm prediction is independent of it (its fit's ranges too, "
+                  "`scenarios/calibration/rotor_rise_screen.toml`); the screen reads the "
+                  + _speeds_text(read) + " rpm frequencies only, so the held-out " + _speeds_text(read)
+                  + " rpm predictions share that choice with the speed they predict, and only the held-out "
+                  + _speeds_text(free) + " rpm prediction is independent of it (its fit's ranges too, "
                   "since session 29). Its landed whirl at 7000 and 10000 rpm is "
                   "one cylindrical state, the same in every drop; at 3000 rpm the DE whirl takes conical, cylindrical "
                   "or mixed shapes from drop to drop. Two speeds still tie the main shaft over a few millimetres: "
@@ -1502,7 +1537,7 @@ def figure_lines(result: dict) -> list[str]:
     lines += [f"The figures above are copies in `{folder}/` beside this report. Per case in the run folder: "
               "`CASE/summary.json`, `CASE/results.h5` and its figures (displacements with the clearance, "
               "forces on the rotor, orbits relative to the inner race with the clearance circle, full spectrum, "
-              "speeds, energy)."]
+              "speeds, energy); the representative drops' forces and orbits in `CASE_representative/`."]
     return lines
 
 
@@ -1586,7 +1621,7 @@ def plot_validation(result: dict, out: Path) -> list[str]:
         if ens:
             k = representative_drop(ens)
             m = ens["members"][k]
-            path = out / "ensembles" / f"{key}_drop{k}" / "results.h5"
+            path = member_results(out, key, k)
             label = f"{key}, drop {k}\n{m['direction']}" + (
                 f", onset {m['onset_s']:.2f} s\n(median {ens['onset_s']:.2f} s)" if m.get("onset_s") is not None
                 and ens.get("onset_s") is not None else "")
@@ -1616,19 +1651,23 @@ def plot_validation(result: dict, out: Path) -> list[str]:
 
 
 def _representative_figures(result: dict, out: Path) -> list[str]:
-    """Forces and orbits of the representative drop of each case of :data:`REPRESENTATIVE_FIGURES`
-    (the project's own figures, ``plots.plot_all``), into ``out/CASE_representative/``; a case
-    without an ensemble or without that drop's results.h5 gets none."""
+    """The figures of :data:`REPRESENTATIVE_FIGURES` (the project's own, ``plots.plot_all``) of each
+    case's representative drop, into ``out/CASE_representative/``; a case without an ensemble or
+    without that drop's results.h5 gets none. Also records, in ``result``, the time-mean vertical force
+    on the rotor at the DE over the representative 7000 rpm drop's whirl (``force_centre_lines``)."""
+    import numpy as np
+
+    from .mechanisms import rotor_force
     from .plots import plot_all
     from .results import read_results
 
     files = []
-    for key in REPRESENTATIVE_FIGURES:
+    for key, which in REPRESENTATIVE_FIGURES.items():
         ens = (result.get("ensembles") or {}).get(key)
         if not ens:
             continue
         k = representative_drop(ens)
-        path = out / "ensembles" / f"{key}_drop{k}" / "results.h5"
+        path = member_results(out, key, k)
         if not path.is_file():
             continue
         r = read_results(path)
@@ -1638,8 +1677,16 @@ def _representative_figures(result: dict, out: Path) -> list[str]:
                                           "(the representative drop)"}
         folder = out / f"{key}_representative"
         folder.mkdir(parents=True, exist_ok=True)
-        made = plot_all(folder, r["time_s"], r["series"], summary, clear, which={"orbits", "forces"})
+        made = plot_all(folder, r["time_s"], r["series"], summary, clear, which=set(which))
         files += [f"{folder.name}/{p.name}" for p in made]
+        onset = ens["members"][k].get("onset_s")
+        if key == "forward_7000" and onset is not None and "DE" in clear:
+            t = r["time_s"]
+            sel = t >= t[0] + onset
+            if sel.sum() > 1 and t[sel][-1] > t[sel][0]:
+                fz = rotor_force(r["series"], "DE")[1][sel]
+                result["de_force_mean_n"] = {"drop": k, "from_s": float(t[sel][0]),
+                                             "mean_n": float(np.trapezoid(fz, t[sel]) / (t[sel][-1] - t[sel][0]))}
     return files
 
 

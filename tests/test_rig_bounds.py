@@ -100,6 +100,10 @@ def test_rig_check_hangs_on_the_pick_when_a_design_within_the_fits_noise_is_on_a
     row = v.rig_checks()[0]
     assert row["pass"] and row["robust"] == {"passing": 2, "n": 3, "holds": False}
     assert v._verdict(row) == "PASS (hangs on the fit's pick: 2 of 3 designs within its noise pass)"
+    # the report's count line says how many fitted rows hold over their fit's noise
+    ev = {"checks": [row], "groups": {"rig": {"passed": 1, "total": 1}}, "passed": 1, "total": 1}
+    assert "**1 of 1** (0 of the 1 fitted by landing holding over every design within their fit's noise)" in \
+        v.counts_line(ev)
 
 
 def test_rig_value_check_flags_an_uncalibrated_value_outside_its_bound(tmp_path):
@@ -225,6 +229,7 @@ def test_rows_over_fit_spans_the_designs_within_the_fits_noise(monkeypatch, tmp_
     (("max = 0.18}", "max = 0.05}"), "ranges.rotor.disks.1.outer_diameter"),
     (("value = 0.1398", "value = \"wide\""), "geometry.NDE_AMB_laminations.outer_diameter"),
     (("speeds_rpm = [7000, 10000]", "speeds_rpm = [7000, -1]"), "speeds_rpm"),
+    (("speeds_rpm = [7000, 10000]", "speeds_rpm = [7000, 7500]"), "speeds_rpm"),  # not a Fig. 39 speed
 ])
 def test_a_bad_screen_record_is_one_line(tmp_path, edit, field):
     """validate.load_screen: a broken screen record names its file and field (the brief's bad-input rule)."""

@@ -10,7 +10,7 @@ import importlib.util
 import sys
 from pathlib import Path
 
-import numpy as np
+from rotorlanding.modefit import static_support_loads
 
 # the sibling study tool, by its path: importable from any working directory and any caller
 _spec = importlib.util.spec_from_file_location("modal_screen", Path(__file__).with_name("modal_screen.py"))
@@ -24,9 +24,7 @@ def screen(data, k_c, krib=6.3e7, speeds=(3000, 7000, 10000), fmax=160.0):
         data["rotor"]["supports"].append({"station": "coupling", "kyy": k_c, "kzz": k_c, "cyy": 0.0, "czz": 0.0})
     fe = ms.assemble(ms.rotor_from_dict(data))
     sysm = ms.full_model(fe).with_supports()
-    u = np.linalg.solve(sysm.K, sysm.gravity_load())
-    reac = {s.station: -s.kzz * u[fe.dof(s.station, "z")] for s in fe.rotor.supports}
-    return reac, {sp: ms.mode_rows(sysm, fe, sp, fmax) for sp in speeds}
+    return static_support_loads(data), {sp: ms.mode_rows(sysm, fe, sp, fmax) for sp in speeds}
 
 
 def main(argv) -> int:

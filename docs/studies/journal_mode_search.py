@@ -29,7 +29,7 @@ from scipy.optimize import differential_evolution
 
 from rotorlanding.config import load_toml
 from rotorlanding.modal import modal_analysis
-from rotorlanding.modefit import rotor_with
+from rotorlanding.modefit import rotor_with, static_support_loads
 from rotorlanding.reduction import full_model
 from rotorlanding.rotor import rotor_from_dict
 from rotorlanding.timoshenko import assemble
@@ -60,10 +60,10 @@ def rotor_data(p, base=None):
 
 
 def analyse(p, base=None):
-    fe = assemble(rotor_from_dict(rotor_data(p, base)))
+    d = rotor_data(p, base)
+    fe = assemble(rotor_from_dict(d))
     system = full_model(fe).with_supports()
-    u = np.linalg.solve(system.K, system.gravity_load())
-    static = {s.station: float(-s.kzz * u[fe.dof(s.station, "z")]) for s in fe.rotor.supports}
+    static = static_support_loads(d)
     de = fe.dof("DE_sleeve", "y")
     modes = {}
     for rpm, _ in FIG39:
