@@ -1653,23 +1653,17 @@ def plot_validation(result: dict, out: Path) -> list[str]:
 def _representative_figures(result: dict, out: Path) -> list[str]:
     """The figures of :data:`REPRESENTATIVE_FIGURES` (the project's own, ``plots.plot_all``) of each
     case's representative drop, into ``out/CASE_representative/``; a case without an ensemble or
-    without that drop's results.h5 gets none. Also records, in ``result``, the time-mean vertical force
-    on the rotor at the DE over the representative 7000 rpm drop's whirl (``force_centre_lines``)."""
-    import numpy as np
-
-    from .mechanisms import rotor_force
+    without that drop's results.h5 gets none."""
     from .plots import plot_all
     from .results import read_results
 
     files = []
     for key, which in REPRESENTATIVE_FIGURES.items():
         ens = (result.get("ensembles") or {}).get(key)
-        if not ens:
+        path = member_results(out, key, representative_drop(ens)) if ens else None
+        if path is None or not path.is_file():
             continue
         k = representative_drop(ens)
-        path = member_results(out, key, k)
-        if not path.is_file():
-            continue
         r = read_results(path)
         summary = r["summary"]
         clear = {b: v["clearance_m"] for b, v in summary["bearings"].items()}
@@ -1679,15 +1673,35 @@ def _representative_figures(result: dict, out: Path) -> list[str]:
         folder.mkdir(parents=True, exist_ok=True)
         made = plot_all(folder, r["time_s"], r["series"], summary, clear, which=set(which))
         files += [f"{folder.name}/{p.name}" for p in made]
-        onset = ens["members"][k].get("onset_s")
-        if key == "forward_7000" and onset is not None and "DE" in clear:
-            t = r["time_s"]
-            sel = t >= t[0] + onset
-            if sel.sum() > 1 and t[sel][-1] > t[sel][0]:
-                fz = rotor_force(r["series"], "DE")[1][sel]
-                result["de_force_mean_n"] = {"drop": k, "from_s": float(t[sel][0]),
-                                             "mean_n": float(np.trapezoid(fz, t[sel]) / (t[sel][-1] - t[sel][0]))}
     return files
+
+
+def representative_force_mean(result: dict, out: Path, key: str = "forward_7000", bearing: str = "DE") -> dict | None:
+    """The time-mean vertical force on the rotor at ``bearing`` over the whirl of ``key``'s
+    representative drop (from its onset to the end; its results.h5 in the run folder ``out``), which
+    ``force_centre_lines`` sets beside the static load: {drop, from_s, mean_n}, or None without that
+    drop's results or onset."""
+    import numpy as np
+
+    from .mechanisms import rotor_force
+    from .results import read_results
+
+    ens = (result.get("ensembles") or {}).get(key)
+    if not ens:
+        return None
+    k = representative_drop(ens)
+    path, onset = member_results(out, key, k), ens["members"][k].get("onset_s")
+    if onset is None or not path.is_file():
+        return None
+    r = read_results(path)
+    if bearing not in r["summary"].get("bearings", {}):
+        return None
+    t = r["time_s"]
+    sel = t >= t[0] + onset
+    if sel.sum() < 2 or t[sel][-1] <= t[sel][0]:
+        return None
+    fz = rotor_force(r["series"], bearing)[1][sel]
+    return {"drop": k, "from_s": float(t[sel][0]), "mean_n": float(np.trapezoid(fz, t[sel]) / (t[sel][-1] - t[sel][0]))}
 
 
 def representative_drop(ens: dict) -> int:
@@ -1762,6 +1776,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
 def _write_report(result: dict, out: Path, rig, publish) -> None:
     """The figures, validation.json and the report into ``out`` (and ``publish``), each atomically."""
     result["figures"] = plot_validation(result, out)
+    result["de_force_mean_n"] = representative_force_mean(result, out)
     name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
     # the report names its figure folder after its published name, in the run folder as well, so
     # the same text reads right in both places

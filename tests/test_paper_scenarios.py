@@ -459,6 +459,7 @@ def test_report_orbits_and_forces_are_the_representative_drop(tmp_path):
         REPRESENTATIVE_FIGURES,
         _representative_figures,
         paper_dir,
+        representative_force_mean,
     )
 
     members = [_member("backward", 50.0, t) for t in (0.025, 0.025, 0.3, 0.33, 0.6)]
@@ -471,7 +472,20 @@ def test_report_orbits_and_forces_are_the_representative_drop(tmp_path):
     files = _representative_figures(result, tmp_path)
     assert files == ["backward_whirl_representative/orbits.png"]  # the backward case's forces are not shown
     assert all((tmp_path / f).stat().st_size > 10_000 for f in files)
-    assert "de_force_mean_n" not in result  # the 7000 rpm drop's results are missing here
+    assert representative_force_mean(result, tmp_path) is None  # the 7000 rpm drop's results are missing here
+    # the DE's time-mean force from the representative drop's onset: here drop 2 (onset 0.3 s) is 0.03 s long,
+    # so none; with the onset inside the record, the trapezoid mean of the force on the rotor from it
+    assert representative_force_mean(result, tmp_path, key="backward_whirl") is None
+    early = [_member("backward", 50.0, t) for t in (0.5, 0.6, 0.01, 0.01, 0.01)]  # median 0.01 s: drop 2
+    m = representative_force_mean({"ensembles": {"backward_whirl": {**ensemble_stats(early), "members": early}}},
+                                  tmp_path, key="backward_whirl")
+    from rotorlanding.mechanisms import rotor_force
+
+    r = read_results(drop / "results.h5")
+    t, fz = r["time_s"], rotor_force(r["series"], "DE")[1]
+    sel = t >= t[0] + 0.01
+    assert m["drop"] == 2 and m["from_s"] >= 0.01
+    assert m["mean_n"] == pytest.approx(np.trapezoid(fz[sel], t[sel]) / (t[sel][-1] - t[sel][0]))
     # every orbit and force figure the report shows is one of these, and its drop's results.h5 is kept
     shown = [g[0] for g in GALLERY if "orbits" in g[0] or "forces" in g[0]]
     assert shown and all(g.split("_representative/")[0] in REPRESENTATIVE_FIGURES for g in shown)
