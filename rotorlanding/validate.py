@@ -1660,11 +1660,10 @@ def _representative_figures(result: dict, out: Path) -> list[str]:
     files = []
     for key, which in REPRESENTATIVE_FIGURES.items():
         ens = (result.get("ensembles") or {}).get(key)
-        path = member_results(out, key, representative_drop(ens)) if ens else None
-        if path is None or not path.is_file():
+        k = representative_drop(ens) if ens else None
+        if k is None or not member_results(out, key, k).is_file():
             continue
-        k = representative_drop(ens)
-        r = read_results(path)
+        r = read_results(member_results(out, key, k))
         summary = r["summary"]
         clear = {b: v["clearance_m"] for b, v in summary["bearings"].items()}
         summary = {**summary, "scenario": f"{summary.get('scenario', key)}, drop {k} of {len(ens['members'])} "
