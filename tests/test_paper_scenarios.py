@@ -229,6 +229,24 @@ def test_onset_spread_counts_drops_in_the_paper_band():
     assert onset_spread([{"direction": "none", "onset_s": None}]) == ""
 
 
+def test_a_verdict_over_its_fits_designs_says_where_it_hangs_on_the_pick():
+    """evaluate_cases with ``over_fit``: a passing table row that only some designs within its fit's
+    noise pass, and a class check that every one passes, get ``robust``; the report's verdict names the
+    first as hanging on the fit's pick and leaves the second plain; a row without a record has none."""
+    from rotorlanding.validate import CASES, _verdict, evaluate_cases
+
+    s = {k: None for k in CASES}
+    ens = _paper_ensembles(forward_7000=[_member("forward", 65.0, 0.1, disp=(-3e-4, 1.5e-4), force=(-0.5e3, 4.5e3))] * 8)
+    over = {"rows": {"t2_force_max": {"in_band": 7, "n_designs": 14, "fit": "f"}},
+            "causes": {"combined landing 7000 rpm whirls forward at the DE": {"passing": 14, "n_designs": 14, "fit": "f"}}}
+    c = {c["check"]: c for c in evaluate_cases(s, ens, over_fit=over)["checks"]}
+    row = c["Table 2: DE vertical force on the rotor max"]
+    assert row["pass"] and row["robust"] == {"passing": 7, "n": 14, "holds": False, "fit": "f"}
+    assert _verdict(row) == "PASS (hangs on the fit's pick: 7 of 14 designs within its noise pass)"
+    de = c["combined landing 7000 rpm whirls forward at the DE"]
+    assert de["pass"] and de["robust"]["holds"] and _verdict(de) == "PASS"
+    assert c["Table 2: DE vertical force on the rotor min"]["robust"] is None
+
 def test_band_rule_margins_and_provenance():
     """Band = max(10 % of the experiment, the paper's own simulation error); a value just outside
     fails, just inside passes; the margin's standard error flags a verdict that hangs on noise;

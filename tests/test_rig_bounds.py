@@ -224,6 +224,60 @@ def test_rows_over_fit_spans_the_designs_within_the_fits_noise(monkeypatch, tmp_
     assert v.rows_over_fit() == {}
 
 
+def test_rows_over_fit_counts_a_design_without_the_number_as_outside(monkeypatch, tmp_path):
+    """validate.rows_over_fit on the worn fit's run: Table 1's onset over its designs within noise; a
+    design whose backward landing gave no onset (no backward whirl) cannot pass the row, so it counts in
+    n_designs and not in in_band; and the verdict's robust entry (validate._over_fit) holds for a fail
+    only when no design passes, for a pass only when every design does (Table 1 onset band 0.4 +/- 0.04 s)."""
+    import json
+
+    import rotorlanding.validate as v
+
+    rows = [{"within_noise_of_best": True, "bw_onset_s": 0.41},
+            {"within_noise_of_best": True, "bw_onset_s": 0.03},
+            {"within_noise_of_best": True, "bw_onset_s": None},
+            {"within_noise_of_best": False, "bw_onset_s": 0.40}]
+    f = tmp_path / v.STORED_FITS[v.WORN_FIT]
+    f.parent.mkdir(parents=True)
+    f.write_text(json.dumps({"space": v.WORN_FIT, "ensemble": 32, "designs": rows}))
+    paper = v.paper_dir()
+    monkeypatch.setattr(v, "project_root", lambda: tmp_path)
+    monkeypatch.setattr(v, "paper_dir", lambda: paper)
+    o = v.rows_over_fit()["t1_onset"]
+    assert (o["n"], o["n_designs"], o["in_band"], o["min"], o["max"]) == (2, 3, 1, 0.03, 0.41)
+    assert v._over_fit(o, ok=False) == {"passing": 1, "n": 3, "holds": False, "fit": v.WORN_FIT}
+    assert v._over_fit(o, ok=True)["holds"] is False
+    assert v._over_fit(dict(o, in_band=0), ok=False)["holds"] is True
+    assert v._over_fit(dict(o, in_band=3), ok=True)["holds"] is True
+    assert v._over_fit(None, ok=True) is None
+
+
+def test_causes_over_fit_judges_each_design_by_the_checks_rule(monkeypatch, tmp_path):
+    """validate.causes_over_fit: the mu_rad switch's backward side over the worn fit's designs within
+    noise (backward in >= 7/8 of its 32 drops: 0.875 passes, 0.8125 does not, a calm majority does not),
+    and the DE-forward check at 3000 rpm over the rotor fit's (>= 7 of its 8 drops forward at the DE)."""
+    import json
+
+    import rotorlanding.validate as v
+
+    worn = [{"within_noise_of_best": True, "bw_direction": "backward", "bw_fraction": 0.875},
+            {"within_noise_of_best": True, "bw_direction": "backward", "bw_fraction": 0.8125},
+            {"within_noise_of_best": True, "bw_direction": "none", "bw_fraction": 1.0},
+            {"within_noise_of_best": False, "bw_direction": "backward", "bw_fraction": 1.0}]
+    rotor = [{"within_noise_of_best": True, "fw3000_de_forward": 7},
+             {"within_noise_of_best": True, "fw3000_de_forward": 6},
+             {"within_noise_of_best": True, "fw3000_de_forward": None}]
+    for cal, rows, n in ((v.WORN_FIT, worn, 32), (v.ROTOR_FIT, rotor, 8)):
+        f = tmp_path / v.STORED_FITS[cal]
+        f.parent.mkdir(parents=True)
+        f.write_text(json.dumps({"space": cal, "ensemble": n, "designs": rows}))
+    monkeypatch.setattr(v, "project_root", lambda: tmp_path)
+    c = v.causes_over_fit()
+    assert c["mu_rad switch: mu_rad 0.3 whirls backward"] == {"passing": 1, "n_designs": 3, "fit": v.WORN_FIT}
+    assert c["mu_rad switch: the same bearing at mu_rad 0.15 is calm"]["passing"] == 0
+    assert c["combined landing 3000 rpm whirls forward at the DE"] == {"passing": 1, "n_designs": 3, "fit": v.ROTOR_FIT}
+
+
 @pytest.mark.parametrize("edit,field", [
     (("script = ", "scriptx = "), "script"),
     (("max = 0.18}", "max = 0.05}"), "ranges.rotor.disks.1.outer_diameter"),
