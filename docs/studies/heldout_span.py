@@ -3,7 +3,7 @@
     python docs/studies/heldout_span.py [--out docs/studies/heldout_span] [--from FIT/calibration.json]
 
 `rotorlanding validate` lands each held-out Fig. 39 speed on the *first* design of the fit made
-without it (scenarios/calibration/holdout/). But a fit on 8-drop ensembles cannot rank the designs
+without it (scenarios/calibration/holdout/). But a fit on ensembles of drops (8 per speed until session 34, 32 since) cannot rank the designs
 near its best (calibrate's ``within_noise_of_best``), and which comes first moves with the install.
 A held-out prediction is then a band: every design the two-speed fit cannot tell from its best
 predicts the third speed. This study asks whether each of them does.
@@ -13,7 +13,7 @@ No extra landings: the held-out fits (`without_<rpm>rpm_landings.toml`) sample t
 the held-out ranges are centred on the screen's rotor, not on rotor_landings.toml's, which a three-speed
 probe set) and score two of its three speeds, so one run of it holds every held-out fit (scored on the
 parts of the two speeds, with their errors) and every design's landing at the held-out speed (the fit's
-drops per speed; validate lands 16). The fit is run into OUT/heldout_fit unless ``--from`` names its
+drops per speed; validate lands 32). The fit is run into OUT/heldout_fit unless ``--from`` names its
 calibration.json (written by calibrate since session 25, with the parts' errors ``err_<part>_se`` and the
 DE columns ``<case>_de_*``).
 
@@ -35,6 +35,7 @@ from rotorlanding.calibrate_run import NOISE_Z, calibrate, within_noise  # noqa:
 from rotorlanding.safeio import atomic_write_text  # noqa: E402
 from rotorlanding.validate import (  # noqa: E402
     HELDOUT_BAND,
+    HELDOUT_DROPS,
     ON_BOUND,
     class_need,
     paper,
@@ -108,7 +109,7 @@ def report(res: list[dict], drops: int, source: str, n: int) -> str:
              "per speed). For each held-out speed: the designs the "
              f"fit on the other two speeds cannot tell from its best (score within {NOISE_Z:g} standard errors of "
              "the difference), and what each predicts at the held-out speed from the same fit's landings there "
-             f"({drops} drops; validate lands 16 on the first design). Pass: DE forward in >= "
+             f"({drops} drops; validate lands {HELDOUT_DROPS} on the first design). Pass: DE forward in >= "
              f"{class_need(drops)} of {drops} and within "
              f"{100 * HELDOUT_BAND:g} % of the experiment, its shaft and disk not within {ON_BOUND:.0%} of their "
              "sourced bounds' ends or of the fit's search ranges' (validate's rule for a fit's pick; marked 'on its bound'). Shapes: the DE whirl's at the held-out speed, cylindrical "
