@@ -684,7 +684,7 @@ def calibrate(space, out_dir, *, workers: int = 2) -> Calibration:
         space: the space file (TOML): the unknowns' ranges, samples, seed, t_end [s], the cases
             scored and the drops per case (``ensemble``); the shipped ones are in
             ``scenarios/calibration/`` (``rotor_landings.toml``: the rig rotor fitted by landing,
-            576 landings, ~10 min on 2 cores).
+            2304 landings, ~21 min on 2 cores).
         out_dir: output folder (created).
         workers: worker processes (>= 1).
 

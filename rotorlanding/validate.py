@@ -75,7 +75,7 @@ QUICK_T_END = 0.5
 #: (scenarios/calibration/worn_bearing.toml, ``ensemble``) scores the same drops.
 #: The 3000 and 7000 rpm combined landings have 32 since session 33: on 8 drops two of their table
 #: rows (Fig. 39's 3000 rpm frequency, Table 2's force maximum) passed by less than their standard
-#: error. Since session 34 the rotor fit lands 32 drops per speed too, and the 10000 rpm landing has
+#: error. Since session 35 the rotor fit lands 32 drops per speed too, and the 10000 rpm landing has
 #: 32: each Fig. 39 speed is judged on the fit's own 32 points (equal spacing from the same start) or,
 #: at 3000 rpm, on a superset of them.
 #: The 3000 rpm landing has 128 since session 34: on 32 its frequency row still passed by less than its
@@ -89,7 +89,7 @@ ENSEMBLE = {key: 32 if key in ("backward_whirl", "forward_7000", "forward_10000"
 STUDY_DROPS = 8
 SWITCH_DROPS = ENSEMBLE["backward_whirl"]
 #: drops of each held-out landing: 16 since session 16, when the 10000 rpm held-out speed passed at
-#: 7 of 8, on the rule with no margin in drops against a standard error of 0.94; 32 since session 34,
+#: 7 of 8, on the rule with no margin in drops against a standard error of 0.94; 32 since session 35,
 #: as many as the held-out fits now land per speed
 HELDOUT_DROPS = 32
 
@@ -213,8 +213,9 @@ def heldout_span() -> dict:
     """Per held-out speed, how the held-out prediction fares over every design its fit cannot tell
     from its best (``docs/studies/heldout_span/heldout_span.json``, written by
     ``docs/studies/heldout_span.py`` from one run of the three-speed fit on the held-out ranges
-    (``holdout/all_speeds_landings.toml``): the held-out fits' designs and
-    scores are its parts, each design's landing at the held-out speed its drops there (32 since session 34)): {rpm:
+    (``holdout/all_speeds_landings.toml``, whose settings are the rotor fit's: since session 35 the study
+    reads the rotor fit's stored run): the held-out fits' designs and
+    scores are its parts, each design's landing at the held-out speed its drops there (32 since session 35)): {rpm:
     {"passing", "n", "first", "band"}}; {} when the study has not been run. ``first`` is the study's
     first design, which the stored held-out fit's should be (the same install)."""
     f = project_root() / "docs" / "studies" / "heldout_span" / "heldout_span.json"
@@ -913,7 +914,7 @@ def fit_values(cal: str, key: str) -> list[float]:
 
 #: what a stored calibration run (``STORED_FITS``) records per design for a table row: row key ->
 #: (calibration, the run's field). The rotor fit lands the three combined landings (32 drops each since
-#: session 34), the worn fit the backward landing at mu_rad 0.3 and 0.15 (32 drops each); a design without the number
+#: session 35), the worn fit the backward landing at mu_rad 0.3 and 0.15 (32 drops each); a design without the number
 #: (no backward whirl, a DE journal that does not whirl forward) cannot pass its row.
 ROTOR_FIT, WORN_FIT = "scenarios/calibration/rotor_landings.toml", "scenarios/calibration/worn_bearing.toml"
 FIT_RECORDED = {"t1_disp_max": (WORN_FIT, "bw_v_disp_max_m"), "t1_disp_min": (WORN_FIT, "bw_v_disp_min_m"),
@@ -1429,7 +1430,8 @@ def report_markdown(result: dict) -> str:
                   "moves with the install. So each held-out prediction is also judged over every design its fit "
                   f"cannot tell from the one landed here, on the {f'{drops} ' if drops else ''}drops of each at the "
                   "held-out speed of a three-speed fit on the same ranges and designs "
-                  "(`scenarios/calibration/holdout/all_speeds_landings.toml`) "
+                  "(`scenarios/calibration/holdout/all_speeds_landings.toml`, the rotor fit's settings: the study reads "
+                  f"that fit's stored run, `{STORED_FITS[ROTOR_FIT]}`) "
                   "(`python docs/studies/heldout_span.py`, `docs/studies/heldout_span/heldout_span.md`); a verdict that "
                   "some of them reverse is marked as hanging on the fit's pick.", "",
                   "| check | rule | ours | margin [Hz] (s.e.) | margin [drops] (s.e.) | over the fit's noise | verdict | "

@@ -249,7 +249,7 @@ def test_ensemble_gives_the_persistence_error():
 @pytest.mark.slow
 def test_rig_landing_fit_reruns_and_keeps_the_rotor_file_within_its_noise(tmp_path):
     """The rig rotor's main shaft and actuator disk are design 0 of
-    scenarios/calibration/rotor_landings.toml (session 30). Re-run (2304 landings since session 34's
+    scenarios/calibration/rotor_landings.toml (session 30). Re-run (2304 landings since session 35's
     32 drops per speed, ~21 min on 2 cores), that design is among those the fit cannot tell from its best. Which of them ranks first
     moves with the install's arithmetic (session 24: design 8, 40.73 / 420.9 mm, on numpy 2.4.6), so
     the fit's claim, and this test's, is the set and its span (docs/calibration.md, session 25)."""
@@ -345,7 +345,7 @@ def test_heldout_fits_search_the_ranges_and_designs_of_the_study_and_rotor_fits(
 def test_heldout_span_reads_the_drops_of_the_run_it_is_given(tmp_path):
     """The study judges 'DE forward in >= 7 of 8' on the fit's own ensemble size: a run with 16 drops
     per speed (calibration.json's ``ensemble``, or the space file it names) is judged on 14 of 16,
-    not on the repository's space file's size (8 until session 34, 32 since)."""
+    not on the repository's space file's size (8 until session 34, 32 since session 35)."""
     import importlib.util
 
     path = Path(__file__).resolve().parents[1] / "docs" / "studies" / "heldout_span.py"

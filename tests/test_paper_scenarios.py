@@ -274,7 +274,7 @@ def test_band_rule_margins_and_provenance():
     prov = provenance()
     assert prov["fig39_7000"].startswith("fitted") and prov["t1_disp_max"] == "predicted"
     assert prov["t2_force_min"] == "predicted"
-    # the rotor is fitted by landing on 8-drop ensembles: the DE's forward share at each speed is in
+    # the rotor is fitted by landing on ensembles of drops (32 per speed since session 35): the DE's forward share at each speed is in
     # its score, so the three "whirls forward at the DE" checks are fitted too; its force is not scored
     assert all(prov[f"fw_de_{r}"].startswith("fitted (scenarios/calibration/rotor_landings.toml") for r in (3000, 7000, 10000))
     assert prov["t2_force_max"] == "predicted"

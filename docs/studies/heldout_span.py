@@ -1,21 +1,22 @@
 """Held-out predictions over the fit's own uncertainty (issue 15, point 4; session 25).
 
-    python docs/studies/heldout_span.py [--out docs/studies/heldout_span] [--from FIT/calibration.json]
+    python docs/studies/heldout_span.py [--out docs/studies/heldout_span] [--from FIT/calibration.json | --rerun]
 
 `rotorlanding validate` lands each held-out Fig. 39 speed on the *first* design of the fit made
-without it (scenarios/calibration/holdout/). But a fit on ensembles of drops (8 per speed until session 34, 32 since) cannot rank the designs
+without it (scenarios/calibration/holdout/). But a fit on ensembles of drops (8 per speed until session 34, 32 since session 35) cannot rank the designs
 near its best (calibrate's ``within_noise_of_best``), and which comes first moves with the install.
 A held-out prediction is then a band: every design the two-speed fit cannot tell from its best
 predicts the third speed. This study asks whether each of them does.
 
 No extra landings: the held-out fits (`without_<rpm>rpm_landings.toml`) sample the same 24 designs
-(seed 15) as the three-speed fit on their ranges (`holdout/all_speeds_landings.toml`; since session 29
-the held-out ranges are centred on the screen's rotor, not on rotor_landings.toml's, which a three-speed
-probe set) and score two of its three speeds, so one run of it holds every held-out fit (scored on the
-parts of the two speeds, with their errors) and every design's landing at the held-out speed (the fit's
-drops per speed; validate lands 32). The fit is run into OUT/heldout_fit unless ``--from`` names its
-calibration.json (written by calibrate since session 25, with the parts' errors ``err_<part>_se`` and the
-DE columns ``<case>_de_*``).
+(seed 15) as the three-speed fit on their ranges (`holdout/all_speeds_landings.toml`; since session 30
+its ranges, samples, seed, drops and t_end are rotor_landings.toml's, which a test checks) and score two of
+its three speeds, so one run of it holds every held-out fit (scored on the parts of the two speeds, with
+their errors) and every design's landing at the held-out speed (the fit's drops per speed; validate lands
+32). It reads the rotor fit's stored run (docs/studies/heldout_span/fit/calibration.json, the same
+landings) unless ``--from`` names another calibration.json or ``--rerun`` runs the three-speed fit into
+OUT/heldout_fit (2304 landings, ~21 min on 2 cores); the run must have the parts' errors ``err_<part>_se``
+and the DE columns ``<case>_de_*`` (written by calibrate since session 25).
 
 Writes OUT/heldout_span.md and OUT/heldout_span.json (atomically).
 """
@@ -151,14 +152,18 @@ def run_drops(src: Path, space: Path) -> int:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(ROOT / "docs" / "studies" / "heldout_span"))
-    ap.add_argument("--from", dest="source", default=None,
-                    help="calibration.json of a run of scenarios/calibration/holdout/all_speeds_landings.toml")
+    ap.add_argument("--from", dest="source", default=str(ROOT / "docs" / "studies" / "heldout_span" / "fit"
+                                                         / "calibration.json"),
+                    help="calibration.json of a run of scenarios/calibration/holdout/all_speeds_landings.toml "
+                         "(or of rotor_landings.toml, the same settings); default: the rotor fit's stored run")
+    ap.add_argument("--rerun", action="store_true",
+                    help="run the three-speed fit into OUT/heldout_fit instead of reading --from")
     ap.add_argument("--workers", type=int, default=2)
     a = ap.parse_args(argv)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     space = ROOT / "scenarios" / "calibration" / "holdout" / "all_speeds_landings.toml"
-    if a.source:
+    if not a.rerun:
         src = Path(a.source)
         rows = json.loads(src.read_text())["designs"]
     else:
