@@ -56,6 +56,23 @@ def energy_summary(series: dict) -> dict:
             "balance_error_relative": float(abs(residual) / total) if total > 0 else 0.0}
 
 
+def span_deflection(spec: LandingSpec, q: np.ndarray) -> dict:
+    """How far the rotor runs off the bearings' common axis along its whole span, not only at the
+    sleeves the catcher bearings bound: the lateral displacement at every FE node rebuilt from the
+    Craig-Bampton coordinates (``cb.T @ q_lat``: constraint modes plus fixed-interface modes, as
+    the reduction defines them). A landed whirl that bends the shaft can run the rotor into an AMB
+    stator, a sensor or a seal while its sleeves stay inside their clearance (docs/calibration.md,
+    session 35). Returns ``{"station_peak_m": {station: largest radial displacement [m]},
+    "peak_m", "peak_x_m"}`` over the samples of ``q`` (rows)."""
+    q = np.atleast_2d(q)
+    full = q[:, :spec.n_lat] @ spec.cb.T.T  # per node (y, z, and, in the full model, two rotations)
+    per = spec.cb.T.shape[0] // len(spec.fe.nodes)
+    r = np.hypot(full[:, 0::per], full[:, 1::per]).max(axis=0)
+    i = int(np.argmax(r))
+    return {"station_peak_m": {k: float(r[n]) for k, n in spec.fe.station_nodes.items()},
+            "peak_m": float(r[i]), "peak_x_m": float(spec.fe.nodes[i])}
+
+
 def uniform(t: np.ndarray, *arrays: np.ndarray):
     """Resample to a uniform grid (Exudyn shortens steps after Newton failures, so stored sample
     times can be irregular; spectra need uniform sampling). Grid step = median sample spacing."""

@@ -26,7 +26,7 @@ import numpy as np
 from .exudyn_model import SolverSettings, build_exudyn, collect, solve
 from .landing import build_spec
 from .mechanisms import series_units
-from .postprocess import evaluate, summarize
+from .postprocess import evaluate, span_deflection, summarize
 from .results import write_results
 from .safeio import WriteError, atomic_write_text, check_out_dir, fault, unlink_quietly
 from .scenario import Scenario
@@ -135,6 +135,7 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
     API (:func:`rotorlanding.simulate`) both build their summary here."""
     series = evaluate(spec, t, q, v)
     summary = summarize(spec, t, series)
+    summary["rotor_deflection"] = span_deflection(spec, q)
     summary["complete"] = stats["complete"]
     summary["t_reached_s"] = float(t[-1])
     if not stats["complete"]:
@@ -217,6 +218,10 @@ def format_summary(summary: dict) -> str:
                      f"{b['vertical_displacement_range_m'][0] * 1e3:+.3f} / {b['vertical_displacement_range_m'][1] * 1e3:+.3f} mm, "
                      f"horizontal {b['horizontal_displacement_range_m'][0] * 1e3:+.3f} / "
                      f"{b['horizontal_displacement_range_m'][1] * 1e3:+.3f} mm, inner race {b['final_race_speed_rpm']:.0f} rpm")
+    d = summary.get("rotor_deflection")
+    if d:  # the span, not only the sleeves: AMB stators, sensors and seals sit elsewhere on the rotor
+        lines.append(f"rotor off the bearings' axis: largest {d['peak_m'] * 1e3:.3f} mm at x = {d['peak_x_m']:.3f} m; "
+                     + ", ".join(f"{k} {v * 1e3:.3f}" for k, v in d["station_peak_m"].items()) + " mm")
     s = summary.get("speeds")
     if s:
         lines.append(f"rotor speed: {s['initial_rotor_rpm']:.0f} -> {s['final_rotor_rpm']:.0f} rpm")

@@ -26,6 +26,13 @@ def test_run_writes_results_summary_and_figures(tmp_path, capsys):
         assert lo < -0.9 * bb["clearance_m"] and hi < 2 * bb["clearance_m"]  # landed, stayed in the bearing
     assert set(summary["energy"]["dissipated_j"]) >= {"radial_friction", "ball_drag", "windage"}
     assert summary["performance"]["simulated_s"] == pytest.approx(0.06)
+    # the deflection along the span, rebuilt from the reduced states, is the stored series at the sleeves
+    res0 = read_results(out / "results.h5")
+    span = summary["rotor_deflection"]
+    for b in ("DE", "NDE"):
+        peak = np.hypot(res0["series"][f"{b}_y_m"], res0["series"][f"{b}_z_m"]).max()
+        assert span["station_peak_m"][f"{b}_sleeve"] == pytest.approx(peak, rel=1e-9)
+    assert span["peak_m"] >= max(span["station_peak_m"].values())
     for fig in ("displacements.png", "forces.png", "orbits.png", "speeds.png", "spectrum.png", "energy.png"):
         assert (out / fig).stat().st_size > 5000
     res = read_results(out / "results.h5")
