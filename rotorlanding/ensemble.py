@@ -59,7 +59,10 @@ def member_result(summary: dict) -> dict:
             "de_direction": de_w.get("direction", "none"), "de_frequency_hz": de_w.get("frequency_hz"),
             "v_disp_range_m": de["vertical_displacement_range_m"], "v_force_range_n": de["vertical_force_range_n"],
             # undefined once the rotor has (nearly) stopped
-            "race_to_rotor": de["final_race_speed_rpm"] / rotor_rpm if rotor_rpm > 1.0 else None}
+            "race_to_rotor": de["final_race_speed_rpm"] / rotor_rpm if rotor_rpm > 1.0 else None,
+            # the whole span's excursion (run summaries only; a calibration's summaries leave it out)
+            "span_peak_m": (summary.get("rotor_deflection") or {}).get("station_peak_m"),
+            "span_max_m": (summary.get("rotor_deflection") or {}).get("peak_m")}
 
 
 def ensemble_stats(members: list[dict]) -> dict:

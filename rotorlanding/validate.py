@@ -20,6 +20,7 @@ import json
 import math
 import os
 import platform
+import statistics
 import time
 from pathlib import Path
 
@@ -1330,6 +1331,38 @@ def counts_line(ev: dict) -> str:
         (f"; {noisy} verdict(s) have a margin smaller than their standard error (flagged)." if noisy else ".")
 
 
+def span_lines(ensembles: dict, centred: dict) -> list[str]:
+    """The report's section on how far each landing runs the rotor off its axis along the whole span
+    (``summary.json`` ``rotor_deflection``, per drop): medians over each case's drops, per rotor
+    station. No verdict: the model has no AMB stator, sensor or seal gap to hold the rotor to, so
+    the section gives what such a gap would have to clear (docs/calibration.md, session 35)."""
+    rows = {}
+    for key, e in (ensembles or {}).items():
+        have = [m for m in e.get("members", []) if m.get("span_peak_m")]
+        if have:
+            rows[key] = have
+    if not rows:
+        return []
+    stations = list(next(iter(rows.values()))[0]["span_peak_m"])
+    clear = sorted({b["clearance_m"] for c in centred.values() for b in c.get("bearings", {}).values()})
+    out = ["", "## The rotor along its span: how far each landing runs it off the bearings' axis", "",
+           "The catcher bearings bound the rotor only at its sleeves (radial clearance "
+           + " / ".join(f"{c * 1e3:.3g}" for c in clear) + " mm). A rig has close clearances elsewhere: the radial "
+           "AMB stators, sensors, seals, the thrust-bearing stator. The largest displacement off the bearings' axis "
+           "over each landing (from the levitated drop on, resting sag included) at every station of the rotor, "
+           "rebuilt from the reduced states (`summary.json` `rotor_deflection`): median over the drops, and the "
+           "largest anywhere on the span. The model has no stator, sensor or seal contact, so there is no verdict: "
+           "a part whose gap is smaller than its station's number would be touched on a real machine "
+           "(`docs/calibration.md`, session 35). [mm]", "",
+           "| case | drops | " + " | ".join(stations) + " | largest anywhere |",
+           "|---|---|" + "---|" * (len(stations) + 1)]
+    for key, have in rows.items():
+        cells = [_fmt(statistics.median(m["span_peak_m"][st] for m in have) * 1e3) for st in stations]
+        cells.append(_fmt(statistics.median(m["span_max_m"] for m in have) * 1e3))
+        out.append(f"| {key} | {len(have)} | " + " | ".join(cells) + " |")
+    return out
+
+
 def report_markdown(result: dict) -> str:
     s = result["cases"]
     ev = result["evaluation"]
@@ -1585,6 +1618,7 @@ def report_markdown(result: dict) -> str:
             lines.append(f"| {key} | {', '.join(f'{k} {v}' for k, v in e['counts'].items())} | {e['direction']} | "
                          f"{at} | {de} | {f} | {_forms_text(e)} | {_fmt(e['onset_s'])} | "
                          f"{_fmt(e.get('persistence'), 100, 3) + ' %' if e.get('persistence') is not None else '-'} | {centred} |")
+    lines += span_lines(ensembles, s)
     lines += ["", "## Repeatability: which numbers are bitwise, which statistical", "",
               "On one machine and install every number here is bitwise repeatable: the solver is deterministic "
               "(fixed step, fixed Newton settings, single process per landing), and two runs give the same report. "

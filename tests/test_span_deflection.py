@@ -53,3 +53,21 @@ def test_the_peak_is_over_time_and_a_bending_mode_moves_the_span_not_the_sleeves
     rm = span_deflection(spec, qm)
     assert all(rm["station_peak_m"][s] == 0.0 for s in spec.stations)
     assert rm["peak_m"] > 0.0 and rm["peak_x_m"] not in [spec.fe.nodes[spec.fe.station_nodes[s]] for s in spec.stations]
+
+
+def test_the_report_gives_each_case_s_median_excursion_per_station_without_a_verdict():
+    """validate's span section: per case the median over the drops that carry ``rotor_deflection``
+    (a calibration's members carry none and are left out), in mm, with the catcher clearance."""
+    from rotorlanding.validate import span_lines
+
+    def member(de_amb, mid):
+        return {"span_peak_m": {"DE_sleeve": 2.5e-4, "DE_AMB": de_amb, "speed_sensor": mid}, "span_max_m": mid}
+
+    ens = {"forward_7000": {"members": [member(4e-4, 2.0e-3), member(5e-4, 2.4e-3), member(9e-4, 2.2e-3)]},
+           "backward_whirl": {"members": [{"span_peak_m": None, "span_max_m": None}]}}
+    centred = {"forward_7000": {"bearings": {"DE": {"clearance_m": 2e-4}, "NDE": {"clearance_m": 2e-4}}}}
+    text = "\n".join(span_lines(ens, centred))
+    assert "radial clearance 0.2 mm" in text and "no verdict" in text
+    assert "| forward_7000 | 3 | 0.25 | 0.5 | 2.2 | 2.2 |" in text
+    assert "backward_whirl" not in text and "PASS" not in text and "FAIL" not in text
+    assert span_lines({"x": {"members": [{"span_peak_m": None}]}}, {}) == []
