@@ -65,7 +65,7 @@ def span_deflection(spec: LandingSpec, q: np.ndarray) -> dict:
     session 35). Returns ``{"station_peak_m": {station: largest radial displacement [m]},
     "peak_m", "peak_x_m"}`` over the samples of ``q`` (rows)."""
     q = np.atleast_2d(q)
-    full = q[:, :spec.n_lat] @ spec.cb.T.T  # per node (y, z, and, in the full model, two rotations)
+    full = q[:, :spec.n_lat] @ spec.cb.T.T  # every full-model DOF: per node y, z and two rotations
     per = spec.cb.T.shape[0] // len(spec.fe.nodes)
     r = np.hypot(full[:, 0::per], full[:, 1::per]).max(axis=0)
     i = int(np.argmax(r))

@@ -1349,11 +1349,13 @@ def span_lines(ensembles: dict, centred: dict) -> list[str]:
            "The catcher bearings bound the rotor only at its sleeves (radial clearance "
            + " / ".join(f"{c * 1e3:.3g}" for c in clear) + " mm). A rig has close clearances elsewhere: the radial "
            "AMB stators, sensors, seals, the thrust-bearing stator. The largest displacement off the bearings' axis "
-           "over each landing (from the levitated drop on, resting sag included) at every station of the rotor, "
-           "rebuilt from the reduced states (`summary.json` `rotor_deflection`): median over the drops, and the "
-           "largest anywhere on the span. The model has no stator, sensor or seal contact, so there is no verdict: "
-           "a part whose gap is smaller than its station's number would be touched on a real machine "
-           "(`docs/calibration.md`, session 35). [mm]", "",
+           "over each landing at every station of the rotor, rebuilt from the reduced states (`summary.json` "
+           "`rotor_deflection`): median over the drops, and the largest anywhere on the span. The axis is the "
+           "levitated one through the sleeves' centres, fixed to the ground, so the numbers hold the rotor's own "
+           "gravity sag (about 0.15 mm at mid-span on the rig) and, at the sleeves, the catcher support's deflection "
+           "(ribbon, balls, contact) beyond the clearance. The model has no stator, sensor or seal contact, so there is "
+           "no verdict: a part whose gap is smaller than its station's number would be reached in the model's median "
+           "landing (`docs/calibration.md`, session 35). [mm]", "",
            "| case | drops | " + " | ".join(stations) + " | largest anywhere |",
            "|---|---|" + "---|" * (len(stations) + 1)]
     for key, have in rows.items():

@@ -28,7 +28,8 @@ def _rigid(spec, a, b, c, d):
 
 
 def test_a_rigid_body_motion_is_rebuilt_exactly_at_every_node(spec):
-    """The constraint modes of a free rotor hold its rigid-body motions: boundary values of a
+    """The constraint modes of a free rotor hold its rigid-body motions (the rig's landing model has
+    no support in K: its coupling's lateral stiffness is 0; with a stiff coupling this would not hold): boundary values of a
     translation plus a tilt give that straight line at every node, including the stations off the
     reduction's boundary (AMBs, sensors, disks) and the largest one at the rotor's far end."""
     a, b, c, d = 1e-4, 3e-4, -2e-4, 1e-4
