@@ -15,13 +15,15 @@ read and what is recalled):
 | ``whirl_orbit_over_clearance`` | 0.0 | whirl orbit amplitude over the radial clearance (landing runs; whirl severity); 0: not judged, reported only |
 | ``dynamic_load_rating_n`` | 61000.0 | C of the catcher bearing, the stress-life anchor of the damage per drop (SKF 7212 BECBP, quoted; public tables also list 51.5 kN: damage scales with C^-3) |
 | ``stress_life_exponent`` | 9.0 | N ~ p^-n (ISO 281 ball exponent 3 x Hertz 3, Lundberg-Palmgren; Zaretsky finds ~12) |
+| ``close_clearances_m`` | {} | radial gap [m] between the rotor and a stationary part other than the catcher bearings (an AMB stator, a sensor, a seal), per rotor station: ``{DE_AMB = 4e-4}``. The rotor's largest displacement off the bearings' axis there over the run (``summary.json`` ``rotor_deflection``) must stay below it. Empty: nothing judged. The machine's drawing gives the gaps; a catcher bearing protects only the sleeves, and a landed rotor that bends reaches the others first (docs/calibration.md, session 35) |
 
 Temperatures are given in degC (the key says so) and used in K inside.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+import math
+from dataclasses import asdict, dataclass, field
 
 from .config import Table
 from .errors import InputError
@@ -41,6 +43,7 @@ class Limits:
     whirl_orbit_over_clearance: float = 0.0
     dynamic_load_rating_n: float = 61000.0
     stress_life_exponent: float = 9.0
+    close_clearances_m: dict = field(default_factory=dict)
 
     @property
     def temperature_k(self) -> float:
@@ -62,7 +65,25 @@ SOURCES = {
     "whirl_orbit_over_clearance": "designer's choice (0: reported, not judged)",
     "dynamic_load_rating_n": "SKF 7212 BECBP C = 61 kN (quoted)",
     "stress_life_exponent": "ISO 281 / Lundberg-Palmgren: 3 x 3 = 9",
+    "close_clearances_m": "the machine's drawing (radial gaps of AMB stators, sensors, seals; none: not judged)",
 }
+
+#: m: a radial gap at least this large is no close clearance for a landing model (the small-excursion FE
+#: rotor and the contact laws hold for displacements of a few tenths of a millimetre)
+CLOSE_CLEARANCE_MAX_M = 0.05
+
+
+def _close_clearances(t: Table) -> dict:
+    """``close_clearances_m``: station -> radial gap, each 0 < gap < ``CLOSE_CLEARANCE_MAX_M`` (the
+    station names are checked against the rotor where the scenario is read)."""
+    gaps = t.table("close_clearances_m", {})
+    out = {}
+    for station in gaps.data:
+        value = gaps.number(station, upper=CLOSE_CLEARANCE_MAX_M)
+        if not value > 0 or not math.isfinite(value):
+            raise InputError(gaps._field(station), value, f"must be a radial gap in m, > 0 and < {CLOSE_CLEARANCE_MAX_M}")
+        out[station] = value
+    return out
 
 
 def limits_from_dict(data) -> Limits:
@@ -82,6 +103,7 @@ def limits_from_dict(data) -> Limits:
                                             nonnegative=True),
         dynamic_load_rating_n=t.number("dynamic_load_rating_n", d.dynamic_load_rating_n, positive=True),
         stress_life_exponent=t.number("stress_life_exponent", d.stress_life_exponent, positive=True),
+        close_clearances_m=_close_clearances(t),
     )
     t.finish()
     if not -KELVIN_0C < out.temperature_degc < 1000.0:

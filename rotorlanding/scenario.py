@@ -349,7 +349,11 @@ def _scenario(data: dict, source, name) -> Scenario:
     top.raw("rotor")
     bounds = _bounds(data)
     top.raw("bounds", {})
-    limits_from_dict(top.raw("limits", None))  # validated here (before any run); read by rotorlanding.verdict
+    limits = limits_from_dict(top.raw("limits", None))  # validated here (before any run); read by rotorlanding.verdict
+    for station in limits.close_clearances_m:  # a gap at a station the rotor lacks would never be judged
+        if station not in rotor.stations:
+            raise InputError(f"limits.close_clearances_m.{station}", limits.close_clearances_m[station],
+                             f"unknown rotor station; defined: {', '.join(rotor.stations) or 'none'}")
     title = top.string("name", name or (Path(source).stem if source else "scenario"))
 
     bt = top.table("bearings")
@@ -657,9 +661,12 @@ def apply_overrides(data: dict, overrides, *, tables: dict | None = None) -> dic
         key, text = split_override(item)
         head, _, rest = key.partition(".")
         if tables and head in tables:
-            if rest not in tables[head]:
+            if rest.partition(".")[0] not in tables[head]:  # limits.close_clearances_m.DE_AMB: a table field
                 raise InputError(f"--set {key}", text.strip(), f"unknown field; allowed: {', '.join(tables[head])}")
-            data.setdefault(head, {})
+            sub, dot, _ = rest.partition(".")
+            table = data.setdefault(head, {})
+            if dot and isinstance(table, dict):  # a field that is itself a table
+                table.setdefault(sub, {})
         try:
             set_dotted(data, key, parse_value(text), must_exist=not (head == "effects" and rest in EFFECTS),
                        create_leaf=True)

@@ -35,6 +35,10 @@ laws (``user_forces``):
   clearance (``whirl_time_s``, ``whirl_orbit_over_clearance``), and the **peak contact force** per
   bearing (``contact_force_n``): judged when their limit is > 0, else reported ('reported' rows).
 
+- **close clearances** (``close_clearances_m``, per rotor station): the rotor's largest displacement
+  off the bearings' axis at the station over the run (``summary.json`` ``rotor_deflection``) against
+  the radial gap of the AMB stator, sensor or seal there. Its 'bearing' column names the station.
+
 The allowable drops are rolling-contact fatigue only: wear, cage damage and heat are not in that
 number (the reports say so next to it).
 
@@ -261,6 +265,23 @@ def whirl_criterion(t, s, summary: dict, limits: Limits, clearance: dict | None 
                          "frequency_hz": worst[3], **severity}}
 
 
+def close_clearance_criteria(summary: dict, limits: Limits) -> tuple[list, list]:
+    """One criterion per station of ``limits.close_clearances_m``: the rotor's largest displacement
+    off the bearings' axis there over the run (``summary['rotor_deflection']['station_peak_m']``, rebuilt
+    from the reduced states, gravity sag and the catcher support's deflection included) against the
+    radial gap of the stationary part at that station. (criteria, not-evaluated notes): a summary
+    without the deflection (a coast-down, a run older than session 35) judges nothing and says so."""
+    if not limits.close_clearances_m:
+        return [], []
+    peaks = (summary.get("rotor_deflection") or {}).get("station_peak_m")
+    if not peaks:
+        return [], ["close clearances: the run's summary has no rotor deflection along the span "
+                    "(a coast-down, or a run from before it was recorded)"]
+    return [_max_criterion("close clearance", station, float(peaks[station]), gap, "m",
+                           {"displacement_off_axis_m": float(peaks[station]), "radial_gap_m": gap})
+            for station, gap in limits.close_clearances_m.items()], []
+
+
 def _severity_criterion(name, bearing, value, limit, unit, dominant=None):
     """A whirl-severity or force figure: judged against ``limit`` when it is > 0, else reported
     (``judged`` false: it passes, and the reports say 'reported' instead of 'pass')."""
@@ -300,6 +321,9 @@ def evaluate(spec, t, s: dict, summary: dict, limits: Limits) -> dict:
     for name, bs in (summary.get("bearings") or {}).items():
         criteria.append(_severity_criterion("peak contact force", name, bs["max_contact_force_n"],
                                             limits.contact_force_n, "N"))
+    c, missing = close_clearance_criteria(summary, limits)
+    criteria += c
+    not_evaluated += missing
     allow = min((d["allowable_drops"] for d in damage.values() if d["allowable_drops"] is not None), default=None)
     failed = [c for c in criteria if not c["pass"]]
     return {"scenario": spec.scenario.name, "kind": summary.get("kind", "landing"),
@@ -332,6 +356,8 @@ def _fmt(v, unit):
         return f"{v:.3g}"
     if unit == "s":
         return f"{v:.3f} s"
+    if unit == "m":
+        return f"{v * 1e3:.3f} mm"
     return f"{v:.4g}" if unit == "-" else f"{v:.4g} {unit}"
 
 
@@ -362,7 +388,7 @@ def markdown(v: dict) -> str:
              f"{_fmt(v['allowable_drops'], 'drops')} (required {v['drops_required']}). {FATIGUE_ONLY}",
              "" if v["complete"] else f"\nThe run is INCOMPLETE (reached {v['t_reached_s']:.3f} s): the verdict covers "
              "only the part simulated.", *[f"\nNot evaluated: {x}" for x in v["not_evaluated"]], "",
-             "| criterion | bearing | value | limit | margin | result | dominated by |", "|---|---|---|---|---|---|---|"]
+             "| criterion | bearing (station) | value | limit | margin | result | dominated by |", "|---|---|---|---|---|---|---|"]
     for c in v["criteria"]:
         dom = ", ".join(f"{k} {_dominant_value(x)}" for k, x in c["dominant"].items() if x is not None)
         margin = _margin(c)

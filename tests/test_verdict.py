@@ -252,3 +252,48 @@ def test_coastdown_chunk_classification_stores_the_whirling_bearing(spec):
     assert (d, k) == (1, nde) and f == pytest.approx(50.0, rel=0.02)
     q[:] = 0.0
     assert _classify_whirl(spec, t, q, v, 0.4)[::2] == (0, -1)
+
+
+def test_close_clearance_limits_are_checked_at_load():
+    """``close_clearances_m``: a gap per rotor station, > 0 and < 0.05 m; a station the rotor lacks is
+    named at load, before any run."""
+    assert limits_from_dict({"close_clearances_m": {"DE_AMB": 4e-4}}).close_clearances_m == {"DE_AMB": 4e-4}
+    for bad in (0.0, -1e-4, 0.1, "wide", float("nan")):
+        with pytest.raises(InputError, match="limits.close_clearances_m.DE_AMB"):
+            limits_from_dict({"close_clearances_m": {"DE_AMB": bad}})
+    with pytest.raises(InputError, match="limits.close_clearances_m.nowhere.*unknown rotor station"):
+        load_scenario(LANDING, ["limits.close_clearances_m.nowhere=4e-4"])
+    sc = load_scenario(LANDING, ["limits.close_clearances_m.DE_AMB=4e-4"])  # --set creates the sub-table
+    assert limits_from_dict(sc.raw["limits"]).close_clearances_m == {"DE_AMB": 4e-4}
+
+
+def test_close_clearance_criterion_judges_the_station_peak():
+    """value = the summary's peak at the station, margin (gap - peak) / gap, pass iff peak <= gap; no
+    limit: no criterion; a summary without the span deflection: not evaluated, said."""
+    summary = {"rotor_deflection": {"station_peak_m": {"DE_AMB": 4.7e-4, "NDE_AMB": 3.0e-4}}}
+    crit, missing = vd.close_clearance_criteria(summary, Limits(close_clearances_m={"DE_AMB": 4e-4, "NDE_AMB": 4e-4}))
+    assert missing == [] and [c["bearing"] for c in crit] == ["DE_AMB", "NDE_AMB"]
+    de, nde = crit
+    assert de["value"] == 4.7e-4 and not de["pass"] and de["margin"] == pytest.approx((4e-4 - 4.7e-4) / 4e-4)
+    assert nde["pass"] and nde["margin"] == pytest.approx(0.25)
+    assert vd.close_clearance_criteria(summary, Limits()) == ([], [])
+    crit, missing = vd.close_clearance_criteria({}, Limits(close_clearances_m={"DE_AMB": 4e-4}))
+    assert crit == [] and "no rotor deflection" in missing[0]
+
+
+def test_close_clearance_on_a_short_landing(tmp_path, capsys):
+    """The verdict of a real landing reads the run's own span deflection: a gap above the station's peak
+    passes, one just below it fails and is named."""
+    out = tmp_path / "v"
+    assert main(["verdict", str(LANDING), "--t-end", "0.02", "--out", str(out), "--quiet", "--no-plots",
+                 "--set", "limits.close_clearances_m.DE_AMB=1e-3"]) == 0
+    peak = json.loads((out / "summary.json").read_text())["rotor_deflection"]["station_peak_m"]["DE_AMB"]
+    assert peak > 0
+    v = json.loads((out / "verdict.json").read_text())
+    c = next(c for c in v["criteria"] if c["criterion"] == "close clearance")
+    assert c["bearing"] == "DE_AMB" and c["value"] == pytest.approx(peak, rel=1e-12) and c["pass"]
+    assert main(["verdict", str(out / "results.h5"), "--no-plots", "--set",
+                 f"limits.close_clearances_m.DE_AMB={0.99 * peak}"]) == 0
+    v2 = json.loads((out / "verdict.json").read_text())
+    assert v2["verdict"] == "fail" and "close clearance (DE_AMB)" in v2["failed"]
+    assert "close clearance [DE_AMB]" in capsys.readouterr().out
