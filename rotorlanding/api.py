@@ -351,11 +351,15 @@ class Scenario:
     def with_rotor(self, rotor: Rotor) -> "Scenario":
         """A new scenario landing ``rotor`` (a :class:`Rotor`) on this scenario's catcher
         bearings: its stations must include the bearings' stations and it needs a
-        ``reduction`` (the Craig-Bampton boundary at the sleeves)."""
+        ``reduction`` (the Craig-Bampton boundary at the sleeves). The scenario's
+        ``[limits] close_clearances_m`` are left out: they are the replaced rotor's gaps at its
+        stations (give the new rotor's with :meth:`with_overrides`,
+        ``{"limits.close_clearances_m.DE_AMB": 4e-4}``)."""
         if not isinstance(rotor, Rotor):
             raise InputError("rotor", type(rotor).__name__, "must be a rotorlanding.Rotor")
         data = copy.deepcopy(self.model.raw)
         data["rotor"] = copy.deepcopy(rotor.table)
+        (data.get("limits") or {}).pop("close_clearances_m", None)
         return Scenario(scenario_from_dict(data, name=self.model.name))
 
     def replace(self, **dotted) -> "Scenario":

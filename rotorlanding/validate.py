@@ -740,6 +740,9 @@ def evaluate_cases(s: dict, ensembles: dict | None = None, rig: list[dict] | Non
               provenance="predicted (held out of the rotor fit)" + (
                   f"; the rotor's other design values were screened on this speed ({screened[int(rpm)]})"
                   if int(rpm) in screened else ""), robust=robust, picks=picks)
+    cl = clearance_check(ensembles, overlay)
+    if cl is not None:
+        checks.append(cl)
     checks += rig or []
     groups = {}
     for c in checks:
@@ -1326,16 +1329,78 @@ def counts_line(ev: dict) -> str:
         parts.append(f"calibrated parameters inside their sourced bounds: **{g['rig']['passed']} of {g['rig']['total']}**"
                      + (f" ({sum(c['pass'] and c['robust']['holds'] for c in firm)} of the {len(firm)} fitted by landing "
                         "holding over every design within their fit's noise)" if firm else ""))
+    if "clearance" in g:
+        parts.append(f"the landed rotor inside the rig's close clearances (AMB air gaps): "
+                     f"**{g['clearance']['passed']} of {g['clearance']['total']}**")
     noisy = sum(bool(c.get("within_noise")) for c in ev["checks"])
     return "; ".join(parts) + f". {ev['passed']} of {ev['total']} checks pass in all" + \
         (f"; {noisy} verdict(s) have a margin smaller than their standard error (flagged)." if noisy else ".")
 
 
-def span_lines(ensembles: dict, centred: dict) -> list[str]:
+#: the paper's landings whose drops the close-clearance check judges (the ribbon and held-out variants
+#: land other rigs: studies, not the rig)
+CLEARANCE_CASES = (*CASES, "backward_mu_0.15")
+
+
+def close_clearances(rig=None) -> tuple[dict[str, float], dict[str, str]]:
+    """The rig's close clearances (``[limits] close_clearances_m`` of the paper scenarios: station ->
+    radial gap [m]) and each gap's bound source (``[bounds]``, "" where none)."""
+    from .limits import limits_from_dict
+    from .scenario import load_scenario
+
+    sc = load_scenario(paper_dir() / CASES["forward_7000"][0], [], overlays=[rig] if rig else ())
+    gaps = limits_from_dict(sc.raw.get("limits")).close_clearances_m
+    return gaps, {st: getattr(sc.bounds.get(f"limits.close_clearances_m.{st}"), "source", "") for st in gaps}
+
+
+def clearance_check(ensembles: dict, rig=None) -> dict | None:
+    """The landed rotor inside the rig's close clearances (``close_clearances``: the AMB stators'
+    radial air gaps): in each paper landing (``CLEARANCE_CASES``) the median over its drops of the
+    rotor's largest displacement off the bearings' axis at the station (``summary.json``
+    ``rotor_deflection``) must stay below the gap. The margin shown is the smallest, gap minus median,
+    with the median's standard error. A catcher bearing exists to keep the rotor off its AMB stators
+    (docs/calibration.md, session 36): a rig whose landed whirl bends the rotor into them is not
+    the paper's rig, whatever its sleeves do. None without gaps or span records."""
+    gaps, sources = close_clearances(rig)
+    rows = []
+    for key in CLEARANCE_CASES:
+        have = [m for m in (ensembles or {}).get(key, {}).get("members", []) if m.get("span_peak_m")]
+        for st, gap in gaps.items():
+            vals = [float(m["span_peak_m"][st]) for m in have if st in m["span_peak_m"]]
+            if len(vals) >= 2:
+                med = statistics.median(vals)
+                rows.append({"case": key, "station": st, "gap_m": gap, "median_m": med,
+                             "se_m": 1.2533 * statistics.stdev(vals) / math.sqrt(len(vals)),
+                             "reached": sum(v > gap for v in vals), "drops": len(vals)})
+    if not rows:
+        return None
+    worst = min(rows, key=lambda r: r["gap_m"] - r["median_m"])
+    margin = worst["gap_m"] - worst["median_m"]
+    out = [r for r in rows if r["median_m"] > r["gap_m"]]
+    text = "; ".join(
+        f"{st} (gap {gaps[st] * 1e3:.3g} mm): " + ", ".join(
+            f"{r['case']} {r['median_m'] * 1e3:.3g}" + (f" ({r['reached']} of {r['drops']} drops past it)"
+                                                       if r["reached"] else "")
+            for r in rows if r["station"] == st) + " mm" for st in gaps)
+    need = {st: max(r["median_m"] for r in rows if r["station"] == st) for st in gaps if any(
+        r["station"] == st for r in rows)}
+    text += "; it would pass with gaps above " + ", ".join(f"{st} {v * 1e3:.3g} mm" for st, v in need.items())
+    return {"group": "clearance", "check": "the landed rotor stays inside the rig's close clearances",
+            "rule": "in every paper landing, the median over its drops of the rotor's largest displacement off the "
+                    "bearings' axis at each station of `[limits] close_clearances_m` (the AMB stators) below that "
+                    "station's radial gap",
+            "pass": not out, "margin": margin, "se": worst["se_m"], "within_noise": abs(margin) < worst["se_m"],
+            "ours": (f"{len(out)} of {len(rows)} case-stations past their gap" if out else "every case-station inside")
+                    + f"; smallest margin {margin * 1e3:+.3g} mm ({worst['case']} at {worst['station']}); " + text,
+            "rows": rows, "provenance": "predicted (no parameter was fitted to it)",
+            "source": "; ".join(f"{st}: {src}" for st, src in sources.items() if src) or None}
+
+
+def span_lines(ensembles: dict, centred: dict, check: dict | None = None) -> list[str]:
     """The report's section on how far each landing runs the rotor off its axis along the whole span
     (``summary.json`` ``rotor_deflection``, per drop): medians over each case's drops, per rotor
-    station. No verdict: the model has no AMB stator, sensor or seal gap to hold the rotor to, so
-    the section gives what such a gap would have to clear (docs/calibration.md, session 35)."""
+    station (docs/calibration.md, session 35), and the verdict of ``clearance_check`` where the rig
+    gives close clearances (session 36)."""
     rows = {}
     for key, e in (ensembles or {}).items():
         have = [m for m in e.get("members", []) if m.get("span_peak_m")]
@@ -1353,15 +1418,22 @@ def span_lines(ensembles: dict, centred: dict) -> list[str]:
            "`rotor_deflection`): median over the drops, and the largest anywhere on the span. The axis is the "
            "levitated one through the sleeves' centres, fixed to the ground, so the numbers hold the rotor's own "
            "gravity sag (about 0.15 mm at mid-span on the rig) and, at the sleeves, the catcher support's deflection "
-           "(ribbon, balls, contact) beyond the clearance. The model has no stator, sensor or seal contact, so there is "
-           "no verdict: a part whose gap is smaller than its station's number would be reached in the model's median "
-           "landing (`docs/calibration.md`, session 35). [mm]", "",
+           "(ribbon, balls, contact) beyond the clearance. The model has no stator, sensor or seal contact: a part whose "
+           "gap is smaller than its station's number would be reached in the model's median landing "
+           "(`docs/calibration.md`, session 35). [mm]", "",
            "| case | drops | " + " | ".join(stations) + " | largest anywhere |",
            "|---|---|" + "---|" * (len(stations) + 1)]
     for key, have in rows.items():
         cells = [_fmt(statistics.median(m["span_peak_m"][st] for m in have) * 1e3) for st in stations]
         cells.append(_fmt(statistics.median(m["span_max_m"] for m in have) * 1e3))
         out.append(f"| {key} | {len(have)} | " + " | ".join(cells) + " |")
+    if check is not None:
+        se = check["se"]
+        out += ["", "The rig's close clearances (`[limits] close_clearances_m` of `scenarios/rig/rig.toml`, the radial AMB "
+                "stators' air gaps; the rule, its source and the verdict below are a check of the report's counts):", "",
+                "| check | rule | ours | margin [mm] (s.e.) | verdict | source of the gaps |", "|---|---|---|---|---|---|",
+                f"| {check['check']} | {check['rule']} | {check['ours']} | {_fmt(check['margin'] * 1e3)} "
+                f"({se * 1e3:.2g}) | {_verdict(check)} | {check['source'] or '-'} |"]
     return out
 
 
@@ -1620,7 +1692,7 @@ def report_markdown(result: dict) -> str:
             lines.append(f"| {key} | {', '.join(f'{k} {v}' for k, v in e['counts'].items())} | {e['direction']} | "
                          f"{at} | {de} | {f} | {_forms_text(e)} | {_fmt(e['onset_s'])} | "
                          f"{_fmt(e.get('persistence'), 100, 3) + ' %' if e.get('persistence') is not None else '-'} | {centred} |")
-    lines += span_lines(ensembles, s)
+    lines += span_lines(ensembles, s, next((c for c in ev["checks"] if c["group"] == "clearance"), None))
     lines += ["", "## Repeatability: which numbers are bitwise, which statistical", "",
               "On one machine and install every number here is bitwise repeatable: the solver is deterministic "
               "(fixed step, fixed Newton settings, single process per landing), and two runs give the same report. "

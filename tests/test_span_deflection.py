@@ -56,9 +56,10 @@ def test_the_peak_is_over_time_and_a_bending_mode_moves_the_span_not_the_sleeves
     assert rm["peak_m"] > 0.0 and rm["peak_x_m"] not in [spec.fe.nodes[spec.fe.station_nodes[s]] for s in spec.stations]
 
 
-def test_the_report_gives_each_case_s_median_excursion_per_station_without_a_verdict():
+def test_the_report_gives_each_case_s_median_excursion_per_station():
     """validate's span section: per case the median over the drops that carry ``rotor_deflection``
-    (a calibration's members carry none and are left out), in mm, with the catcher clearance."""
+    (a calibration's members carry none and are left out), in mm, with the catcher clearance; a
+    verdict only with the close-clearance check (tests/test_validate_clearance.py), shown when given."""
     from rotorlanding.validate import span_lines
 
     def member(de_amb, mid):
@@ -68,7 +69,11 @@ def test_the_report_gives_each_case_s_median_excursion_per_station_without_a_ver
            "backward_whirl": {"members": [{"span_peak_m": None, "span_max_m": None}]}}
     centred = {"forward_7000": {"bearings": {"DE": {"clearance_m": 2e-4}, "NDE": {"clearance_m": 2e-4}}}}
     text = "\n".join(span_lines(ens, centred))
-    assert "radial clearance 0.2 mm" in text and "no verdict" in text
+    assert "radial clearance 0.2 mm" in text
     assert "| forward_7000 | 3 | 0.25 | 0.5 | 2.2 | 2.2 |" in text
     assert "backward_whirl" not in text and "PASS" not in text and "FAIL" not in text
     assert span_lines({"x": {"members": [{"span_peak_m": None}]}}, {}) == []
+    check = {"check": "the landed rotor stays inside the rig's close clearances", "rule": "r", "ours": "o",
+             "margin": -1e-4, "se": 2e-5, "pass": False, "within_noise": False, "source": "s"}
+    text = "\n".join(span_lines(ens, centred, check))
+    assert "| the landed rotor stays inside the rig's close clearances | r | o | -0.1 (0.02) | FAIL | s |" in text
