@@ -1393,7 +1393,8 @@ def clearance_check(ensembles: dict, rig=None) -> dict | None:
             "ours": (f"{len(out)} of {len(rows)} case-stations past their gap" if out else "every case-station inside")
                     + f"; smallest margin {margin * 1e3:+.3g} mm ({worst['case']} at {worst['station']}); " + text,
             "rows": rows, "provenance": "predicted (no parameter was fitted to it)",
-            "source": "; ".join(f"{st}: {src}" for st, src in sources.items() if src) or None}
+            "source": "; ".join(f"{st}: {src}" for st, src in sorted(sources.items(), key=lambda kv: kv[1].startswith("as "))
+                                if src) or None}
 
 
 def span_lines(ensembles: dict, centred: dict, check: dict | None = None) -> list[str]:
@@ -1430,7 +1431,8 @@ def span_lines(ensembles: dict, centred: dict, check: dict | None = None) -> lis
     if check is not None:
         se = check["se"]
         out += ["", "The rig's close clearances (`[limits] close_clearances_m` of `scenarios/rig/rig.toml`, the radial AMB "
-                "stators' air gaps; the rule, its source and the verdict below are a check of the report's counts):", "",
+                "stators' air gaps) against these landings, a check counted in the report's totals (a prediction: no "
+                "parameter was fitted to it):", "",
                 "| check | rule | ours | margin [mm] (s.e.) | verdict | source of the gaps |", "|---|---|---|---|---|---|",
                 f"| {check['check']} | {check['rule']} | {check['ours']} | {_fmt(check['margin'] * 1e3)} "
                 f"({se * 1e3:.2g}) | {_verdict(check)} | {check['source'] or '-'} |"]
