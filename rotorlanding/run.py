@@ -155,8 +155,22 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
         warnings.append(f"energy balance error {100 * err:.1f} % > {100 * ENERGY_WARN:.0f} %: the time step "
                         f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
     warnings += split_warnings(summary.get("thermal"))
+    warnings += clearance_warnings(scenario, summary["rotor_deflection"])
     summary["warnings"] = warnings
     return series, summary
+
+
+def clearance_warnings(scenario, deflection: dict) -> list[str]:
+    """A warning per close clearance (``[limits] close_clearances_m``) the rotor runs past: the model has
+    no contact at an AMB stator, sensor or seal, so past its gap the run no longer shows what the
+    machine does (it would rub there). The verdict judges the same numbers (``verdict.close_clearance_criteria``)."""
+    from .limits import limits_from_dict
+
+    gaps = limits_from_dict(scenario.raw.get("limits")).close_clearances_m
+    peaks = deflection.get("station_peak_m") or {}
+    return [f"the rotor runs {peaks[st] * 1e3:.3f} mm off the bearings' axis at {st}, past its {gap * 1e3:.3g} mm gap "
+            "([limits] close_clearances_m): a real rotor would touch the part there, which the model has no contact for"
+            for st, gap in gaps.items() if st in peaks and peaks[st] > gap]
 
 
 def stop_report(spec, series: dict, stats: dict, window: int = 20) -> str:

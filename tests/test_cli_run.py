@@ -41,11 +41,17 @@ def test_run_writes_results_summary_and_figures(tmp_path, capsys):
     units = json.loads(__import__("h5py").File(out / "results.h5")["states/q"].attrs["units"])
     assert units[0] == "m" and "theta" in res["names"]
     assert res["scenario"]["operating"]["t_end"] == 0.06
-    # the stored scenario reproduces the run
+    assert not any("close_clearances_m" in w for w in summary["warnings"])  # inside the rig's 0.4 mm AMB gaps
+    # the stored scenario reproduces the run; a close clearance is judged after the solve and changes nothing in it,
+    # but a gap the rotor runs past is a warning naming it (the model has no contact there)
     out2 = tmp_path / "rerun"
-    assert main(["run", str(out / "results.h5"), "--out", str(out2), "--quiet", "--no-plots"]) == 0
+    assert main(["run", str(out / "results.h5"), "--out", str(out2), "--quiet", "--no-plots",
+                 "--set", "limits.close_clearances_m.DE_AMB=1e-5"]) == 0
     res2 = read_results(out2 / "results.h5")
     np.testing.assert_allclose(res2["q"], res["q"], atol=1e-12)
+    warned = [w for w in json.loads((out2 / "summary.json").read_text())["warnings"] if "close_clearances_m" in w]
+    assert len(warned) == 1 and "at DE_AMB, past its 0.01 mm gap" in warned[0]
+    assert f"{span['station_peak_m']['DE_AMB'] * 1e3:.3f} mm" in warned[0]
     assert "whirl" in capsys.readouterr().out
 
 
