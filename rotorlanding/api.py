@@ -352,14 +352,18 @@ class Scenario:
         """A new scenario landing ``rotor`` (a :class:`Rotor`) on this scenario's catcher
         bearings: its stations must include the bearings' stations and it needs a
         ``reduction`` (the Craig-Bampton boundary at the sleeves). The scenario's
-        ``[limits] close_clearances_m`` are left out: they are the replaced rotor's gaps at its
-        stations (give the new rotor's with :meth:`with_overrides`,
-        ``{"limits.close_clearances_m.DE_AMB": 4e-4}``)."""
+        ``[limits] close_clearances_m`` are kept at the stations the new rotor defines (the same
+        stators at the same names) and left out at the others, which it does not have; give or
+        change the new rotor's with :meth:`with_overrides`
+        (``{"limits.close_clearances_m.DE_AMB": 4e-4}``)."""
         if not isinstance(rotor, Rotor):
             raise InputError("rotor", type(rotor).__name__, "must be a rotorlanding.Rotor")
         data = copy.deepcopy(self.model.raw)
         data["rotor"] = copy.deepcopy(rotor.table)
-        (data.get("limits") or {}).pop("close_clearances_m", None)
+        gaps = (data.get("limits") or {}).get("close_clearances_m")
+        if isinstance(gaps, dict):
+            stations = (rotor.table.get("stations") or {})
+            data["limits"]["close_clearances_m"] = {k: x for k, x in gaps.items() if k in stations}
         return Scenario(scenario_from_dict(data, name=self.model.name))
 
     def replace(self, **dotted) -> "Scenario":

@@ -65,7 +65,9 @@ SOURCES = {
     "whirl_orbit_over_clearance": "designer's choice (0: reported, not judged)",
     "dynamic_load_rating_n": "SKF 7212 BECBP C = 61 kN (quoted)",
     "stress_life_exponent": "ISO 281 / Lundberg-Palmgren: 3 x 3 = 9",
-    "close_clearances_m": "the machine's drawing (radial gaps of AMB stators, sensors, seals; none: not judged)",
+    "close_clearances_m": "the scenario's radial gaps of AMB stators, sensors, seals at rotor stations (the machine's "
+                          "drawing; the paper rig's AMB gaps: twice its catcher clearance, a design rule, "
+                          "scenarios/rig/rig.toml; none: not judged)",
 }
 
 #: m: a radial gap at least this large is no close clearance for a landing model (the small-excursion FE
@@ -76,7 +78,11 @@ CLOSE_CLEARANCE_MAX_M = 0.05
 def _close_clearances(t: Table) -> dict:
     """``close_clearances_m``: station -> radial gap, each 0 < gap < ``CLOSE_CLEARANCE_MAX_M`` (the
     station names are checked against the rotor where the scenario is read)."""
-    gaps = t.table("close_clearances_m", {})
+    raw = t.raw("close_clearances_m", {})
+    if not isinstance(raw, dict):
+        raise InputError(t._field("close_clearances_m"), raw,
+                         "must be a table of rotor station = radial gap in m, e.g. {DE_AMB = 4.0e-4}")
+    gaps = Table(raw, t._field("close_clearances_m"))
     out = {}
     for station in gaps.data:
         value = gaps.number(station, upper=CLOSE_CLEARANCE_MAX_M)

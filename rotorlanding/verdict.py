@@ -275,8 +275,8 @@ def close_clearance_criteria(summary: dict, limits: Limits) -> tuple[list, list]
         return [], []
     peaks = (summary.get("rotor_deflection") or {}).get("station_peak_m")
     if not peaks:
-        return [], ["close clearances: the run's summary has no rotor deflection along the span "
-                    "(a coast-down, or a run from before it was recorded)"]
+        return [], ["close clearances: the run's summary has no rotor deflection along the span (a coast-down "
+                    "records none: judge a landing at its speed; or a run from before it was recorded)"]
     return [_max_criterion("close clearance", station, float(peaks[station]), gap, "m",
                            {"displacement_off_axis_m": float(peaks[station]), "radial_gap_m": gap})
             for station, gap in limits.close_clearances_m.items()], []
@@ -361,6 +361,13 @@ def _fmt(v, unit):
     return f"{v:.4g}" if unit == "-" else f"{v:.4g} {unit}"
 
 
+def _limit_text(value) -> str:
+    """A limit as the reports show it: a table of gaps as ``station mm`` pairs ('none' when empty)."""
+    if isinstance(value, dict):
+        return ", ".join(f"{k} {x * 1e3:.3g} mm" for k, x in value.items()) or "none"
+    return str(value)
+
+
 def _margin(c) -> str:
     if c["margin"] is None:
         return "-"
@@ -396,7 +403,7 @@ def markdown(v: dict) -> str:
                      f"{_fmt(c['limit'], c['unit']) if c['limit'] is not None else '-'} | {margin} | "
                      f"{_result(c)} | {dom} |")
     lines += ["", "Limits and their sources:", ""]
-    lines += [f"- `{k}` = {x['value']}: {x['source']}" for k, x in v["limits"].items()]
+    lines += [f"- `{k}` = {_limit_text(x['value'])}: {x['source']}" for k, x in v["limits"].items()]
     lines += ["", "Laws, sources and assumptions: docs/designer_models.md; the verdict's rules: rotorlanding/verdict.py."]
     return "\n".join(lines) + "\n"
 
@@ -444,8 +451,8 @@ def verdict_from_results(results_h5, out_dir=None, *, overrides=None, plots=True
     data = stored["scenario"]
     data.pop("coastdown", None)
     data = apply_overrides(data, overrides)
+    scenario = scenario_from_dict(data, source=str(path))  # first: a bad limit's line then names the file
     limits = limits_from_dict(data.get("limits"))
-    scenario = scenario_from_dict(data, source=str(path))
     spec = build_spec(scenario)
     t, s, summary = np.asarray(stored["time_s"]), stored["series"], stored["summary"]
     v = evaluate(spec, t, s, summary, limits)

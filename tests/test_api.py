@@ -229,16 +229,19 @@ def test_readme_python_section_runs(tmp_path, monkeypatch):
     assert (tmp_path / "r.h5").is_file() and (tmp_path / "c.png").is_file()
 
 
-def test_with_rotor_leaves_the_replaced_rotor_s_close_clearances_out():
-    """The rig's AMB gaps are at the rig rotor's stations: a new rotor does not inherit them (its own
-    are given with with_overrides, and a station it lacks is refused, one line)."""
+def test_with_rotor_keeps_the_close_clearances_at_the_stations_it_has():
+    """The rig's AMB gaps are at stations of the rig rotor: a new rotor with those stations keeps them,
+    one without them leaves them out (its own are given with with_overrides, and a station it lacks is
+    refused, one line)."""
     sc = rl.Scenario.load(SCEN)
-    assert sc.model.raw["limits"]["close_clearances_m"]  # the rig gives its AMB gaps
+    gaps = sc.model.raw["limits"]["close_clearances_m"]
+    assert set(gaps) == {"NDE_AMB", "DE_AMB"}  # the rig gives its AMB gaps
     table = sc.model.raw["rotor"]
+    assert sc.with_rotor(rl.Rotor.from_table(table)).model.raw["limits"]["close_clearances_m"] == gaps
     keep = ("NDE_sleeve", "DE_sleeve", "coupling")  # a rotor without the AMB stations
     mine = rl.Rotor.from_table({**table, "stations": {k: table["stations"][k] for k in keep}})
     sc2 = sc.with_rotor(mine)
-    assert "close_clearances_m" not in sc2.model.raw["limits"]
+    assert sc2.model.raw["limits"]["close_clearances_m"] == {}
     assert sc2.with_overrides({"limits.close_clearances_m.DE_sleeve": 3e-4}).model.raw["limits"][
         "close_clearances_m"] == {"DE_sleeve": 3e-4}
     with pytest.raises(rl.InputError, match="limits.close_clearances_m.DE_AMB"):

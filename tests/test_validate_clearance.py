@@ -51,3 +51,32 @@ def test_the_rig_gives_its_amb_gaps_with_sources():
     gaps, sources = v.close_clearances()
     assert set(gaps) == {"NDE_AMB", "DE_AMB"}
     assert all(0 < g < 1e-3 for g in gaps.values()) and all(sources.values())
+
+
+def test_the_report_counts_the_check_as_its_own_group(gaps):
+    """evaluate_cases adds the check when the drops carry the span, and the headline counts it apart
+    from the rig's bound rows."""
+    from rotorlanding.ensemble import ensemble_stats
+
+    def member(direction, f, de_amb):
+        return {"direction": direction, "bearing": "DE", "frequency_hz": f, "onset_s": 0.1 if f else None,
+                "end_s": None, "persistence": 1.0 if f else None, "de_direction": direction, "de_frequency_hz": f,
+                "v_disp_range_m": [-3e-4, 1.5e-4], "v_force_range_n": [-0.5e3, 4.5e3], "race_to_rotor": 0.99,
+                "span_peak_m": {"NDE_AMB": 2e-4, "DE_AMB": de_amb}, "span_max_m": 1e-3}
+
+    cases = {"no_whirl": ("none", None, 2.5e-4), "backward_whirl": ("backward", 49.0, 3.0e-4),
+             "forward_3000": ("forward", 48.0, 8e-4), "forward_7000": ("forward", 65.0, 4.7e-4),
+             "forward_10000": ("forward", 77.0, 4.4e-4), "forward_7000_no_axial_rub": ("none", None, 2.5e-4)}
+    ens = {}
+    for key, (d, f, amb) in cases.items():
+        members = [member(d, f, amb * (1 + 0.01 * k)) for k in range(8)]
+        ens[key] = {**ensemble_stats(members), "members": members}
+    ev = v.evaluate_cases({k: None for k in v.CASES}, ens)
+    (c,) = [c for c in ev["checks"] if c["group"] == "clearance"]
+    assert not c["pass"] and "3 of 12 case-stations past their gap" in c["ours"]
+    assert ev["groups"]["clearance"] == {"passed": 0, "total": 1}
+    assert "the landed rotor inside the rig's close clearances (AMB air gaps): **0 of 1**" in v.counts_line(ev)
+    for e in ens.values():  # drops without the span record (a stored calibration's): no check
+        for m in e["members"]:
+            m["span_peak_m"] = None
+    assert not [c for c in v.evaluate_cases({k: None for k in v.CASES}, ens)["checks"] if c["group"] == "clearance"]
