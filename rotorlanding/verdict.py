@@ -269,14 +269,16 @@ def close_clearance_criteria(summary: dict, limits: Limits) -> tuple[list, list]
     """One criterion per station of ``limits.close_clearances_m``: the rotor's largest displacement
     off the bearings' axis there over the run (``summary['rotor_deflection']['station_peak_m']``, rebuilt
     from the reduced states, gravity sag and the catcher support's deflection included) against the
-    radial gap of the stationary part at that station. (criteria, not-evaluated notes): a summary
-    without the deflection (a coast-down, a run older than session 35) judges nothing and says so."""
+    radial gap of the stationary part at that station (a landing's from every output sample, a
+    coast-down's from its stored ones). (criteria, not-evaluated notes): a summary without the
+    deflection (a run older than session 35, a coast-down older than session 36) judges nothing and
+    says so."""
     if not limits.close_clearances_m:
         return [], []
     peaks = (summary.get("rotor_deflection") or {}).get("station_peak_m")
     if not peaks:
-        return [], ["close clearances: the run's summary has no rotor deflection along the span (a coast-down "
-                    "records none: judge a landing at its speed; or a run from before it was recorded)"]
+        return [], ["close clearances: the run's summary has no rotor deflection along the span (a run from "
+                    "before it was recorded: re-run it)"]
     return [_max_criterion("close clearance", station, float(peaks[station]), gap, "m",
                            {"displacement_off_axis_m": float(peaks[station]), "radial_gap_m": gap})
             for station, gap in limits.close_clearances_m.items()], []
