@@ -279,9 +279,11 @@ def close_clearance_criteria(summary: dict, limits: Limits) -> tuple[list, list]
     if not peaks:
         return [], ["close clearances: the run's summary has no rotor deflection along the span (a run from "
                     "before it was recorded: re-run it)"]
+    lacking = [st for st in limits.close_clearances_m if st not in peaks]  # a --set gap at a station the run lacks
     return [_max_criterion("close clearance", station, float(peaks[station]), gap, "m",
                            {"displacement_off_axis_m": float(peaks[station]), "radial_gap_m": gap})
-            for station, gap in limits.close_clearances_m.items()], []
+            for station, gap in limits.close_clearances_m.items() if station in peaks], \
+        [f"close clearance at {st}: the run's rotor deflection has no such station" for st in lacking]
 
 
 def _severity_criterion(name, bearing, value, limit, unit, dominant=None):
