@@ -550,6 +550,12 @@ class Landing(_SeriesResults):
         negative = backward whirl), the +-1x lines (PNG)."""
         return self._plot("spectrum", path)
 
+    def plot_span(self, path=None) -> Path:
+        """The rotor's largest radial displacement off the bearings' axis [mm] at every point of its
+        span [m] over the run, with the catcher clearances and the scenario's close clearances
+        (``[limits] close_clearances_m``) drawn (PNG)."""
+        return self._plot("span", path)
+
     def plot_forces(self, path=None) -> Path:
         """Force of each catcher bearing on the rotor [kN] against time [s] (PNG)."""
         return self._plot("forces", path)

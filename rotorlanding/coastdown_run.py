@@ -555,7 +555,9 @@ def stored_span_deflection(spec, q_dataset, n: int, block: int = 20000) -> dict:
     parts = [span_deflection(spec, q_dataset[i:min(i + block, n)]) for i in range(0, n, block)]
     best = max(parts, key=lambda p: p["peak_m"])
     return {"station_peak_m": {k: max(p["station_peak_m"][k] for p in parts) for k in parts[0]["station_peak_m"]},
-            "peak_m": best["peak_m"], "peak_x_m": best["peak_x_m"]}
+            "peak_m": best["peak_m"], "peak_x_m": best["peak_x_m"], "x_m": parts[0]["x_m"],
+            "node_peak_m": [max(v) for v in zip(*(p["node_peak_m"] for p in parts))],
+            "station_x_m": parts[0]["station_x_m"]}
 
 
 def finish(path: Path, spec, scenario: Scenario, cd: Coastdown, *, plots: bool = True) -> dict:
@@ -606,6 +608,9 @@ def finish(path: Path, spec, scenario: Scenario, cd: Coastdown, *, plots: bool =
             if thermal:
                 summary["thermal"] = thermal
             summary["rotor_deflection"] = stored_span_deflection(spec, h5["states/q"], n_file)
+            from .run import close_clearances  # the landing's one reading of them
+
+            summary["rotor_deflection"]["close_clearances_m"] = close_clearances(scenario)
         if not complete and reason == "solver failed":
             summary["message"] = str(h5.attrs["message"])
         summary["units"] = "SI (m, N, s, J); speeds in rpm as named"

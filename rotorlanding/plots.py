@@ -1,5 +1,6 @@
 """Figures of a landing run (PNG): displacements, forces, orbits with the clearance circle,
-speeds, full spectrum, energy."""
+speeds, full spectrum, energy, and the rotor's excursion along its span with the catcher clearances
+and the close clearances (AMB stators, sensors, seals) drawn."""
 
 from __future__ import annotations
 
@@ -29,7 +30,7 @@ def _plt():
     return plt
 
 
-FIGURES = ("displacements", "forces", "orbits", "speeds", "spectrum", "energy")
+FIGURES = ("displacements", "forces", "orbits", "speeds", "spectrum", "energy", "span")
 
 
 def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: float = 0.0,
@@ -152,4 +153,31 @@ def plot_all(out_dir, t, series: dict, summary: dict, bearings: dict, t_drop: fl
         ax.grid(alpha=0.3)
         ax.set_title(_wrap(f"{title}: energy lost per mechanism"))
         save(fig, "energy.png")
+
+    span = summary.get("rotor_deflection") or {}
+    if want("span") and span.get("node_peak_m"):
+        fig, ax = plt.subplots(figsize=(9, 4.6))
+        x = np.asarray(span["x_m"])
+        ax.plot(x, 1e3 * np.asarray(span["node_peak_m"]), "-", color="C0", lw=1.5,
+                label="largest excursion over the run")
+        peaks, where = span["station_peak_m"], span["station_x_m"]
+        catchers = {bs["station"]: (name, bs["clearance_m"]) for name, bs in (summary.get("bearings") or {}).items()
+                    if bs.get("station") in where}
+        for k, (st, (name, c)) in enumerate(catchers.items()):
+            ax.plot([where[st]], [1e3 * c], "v", color="k", ms=8, label=None if k else "catcher bearing radial clearance")
+            ax.annotate(name, (where[st], 1e3 * c), textcoords="offset points", xytext=(0, 8), ha="center", fontsize=8)
+        gaps = {st: g for st, g in (span.get("close_clearances_m") or {}).items() if st in where}
+        for k, (st, gap) in enumerate(gaps.items()):
+            ax.plot([where[st]], [1e3 * gap], "v", color="C3", ms=8,
+                    label=None if k else "close clearance ([limits] close_clearances_m)")
+            ax.annotate(st + (" PAST" if peaks.get(st, 0.0) > gap else ""), (where[st], 1e3 * gap),
+                        textcoords="offset points", xytext=(0, 8), ha="center", fontsize=8, color="C3")
+        ax.set_xlabel("position along the rotor x [m] (from the NDE end)")
+        ax.set_ylabel("radial displacement off the bearings' axis [mm]")
+        ax.set_ylim(bottom=0.0)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=3)  # below: the curve fills the axes
+        ax.grid(alpha=0.3)
+        ax.set_title(_wrap(f"{title}: how far the rotor runs off the bearings' axis along its span "
+                           "(levitated axis; gravity sag and support deflection included)"))
+        save(fig, "span.png")
     return files

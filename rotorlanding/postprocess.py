@@ -63,14 +63,18 @@ def span_deflection(spec: LandingSpec, q: np.ndarray) -> dict:
     the reduction defines them). A landed whirl that bends the shaft can run the rotor into an AMB
     stator, a sensor or a seal while its sleeves stay inside their clearance (docs/calibration.md,
     session 35). Returns ``{"station_peak_m": {station: largest radial displacement [m]},
-    "peak_m", "peak_x_m"}`` over the samples of ``q`` (rows)."""
+    "peak_m", "peak_x_m", "x_m": node positions, "node_peak_m": the largest at each node,
+    "station_x_m"}`` over the
+    samples of ``q`` (rows); the last two draw the envelope along the span (``plots``, span.png)."""
     q = np.atleast_2d(q)
     full = q[:, :spec.n_lat] @ spec.cb.T.T  # every full-model DOF: per node y, z and two rotations
     per = spec.cb.T.shape[0] // len(spec.fe.nodes)
     r = np.hypot(full[:, 0::per], full[:, 1::per]).max(axis=0)
     i = int(np.argmax(r))
     return {"station_peak_m": {k: float(r[n]) for k, n in spec.fe.station_nodes.items()},
-            "peak_m": float(r[i]), "peak_x_m": float(spec.fe.nodes[i])}
+            "peak_m": float(r[i]), "peak_x_m": float(spec.fe.nodes[i]),
+            "x_m": [float(x) for x in spec.fe.nodes], "node_peak_m": [float(x) for x in r],
+            "station_x_m": {k: float(spec.fe.nodes[n]) for k, n in spec.fe.station_nodes.items()}}
 
 
 def uniform(t: np.ndarray, *arrays: np.ndarray):

@@ -136,6 +136,7 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
     series = evaluate(spec, t, q, v)
     summary = summarize(spec, t, series)
     summary["rotor_deflection"] = span_deflection(spec, q)
+    summary["rotor_deflection"]["close_clearances_m"] = close_clearances(scenario)  # what it is judged against
     summary["complete"] = stats["complete"]
     summary["t_reached_s"] = float(t[-1])
     if not stats["complete"]:
@@ -160,13 +161,18 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
     return series, summary
 
 
+def close_clearances(scenario) -> dict[str, float]:
+    """The scenario's ``[limits] close_clearances_m`` (station -> radial gap [m]; {} when none)."""
+    from .limits import limits_from_dict
+
+    return limits_from_dict(scenario.raw.get("limits")).close_clearances_m
+
+
 def clearance_warnings(scenario, deflection: dict) -> list[str]:
     """A warning per close clearance (``[limits] close_clearances_m``) the rotor runs past: the model has
     no contact at an AMB stator, sensor or seal, so past its gap the run no longer shows what the
     machine does (it would rub there). The verdict judges the same numbers (``verdict.close_clearance_criteria``)."""
-    from .limits import limits_from_dict
-
-    gaps = limits_from_dict(scenario.raw.get("limits")).close_clearances_m
+    gaps = close_clearances(scenario)
     peaks = deflection.get("station_peak_m") or {}
     return [f"the rotor runs {peaks[st] * 1e3:.3f} mm off the bearings' axis at {st}, past its {gap * 1e3:.3g} mm gap "
             "([limits] close_clearances_m): a real rotor would touch the part there, which the model has no contact for"

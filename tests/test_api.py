@@ -138,7 +138,7 @@ def test_save_load_round_trip(cli_and_api, tmp_path):
 
 def test_plots_write_labelled_figures(cli_and_api, tmp_path):
     _, landing = cli_and_api
-    for fn in (landing.plot_orbits, landing.plot_displacements, landing.plot_spectrum):
+    for fn in (landing.plot_orbits, landing.plot_displacements, landing.plot_spectrum, landing.plot_span):
         p = fn(tmp_path / f"{fn.__name__}.png")
         assert p.stat().st_size > 10000
 

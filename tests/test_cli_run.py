@@ -33,7 +33,13 @@ def test_run_writes_results_summary_and_figures(tmp_path, capsys):
         peak = np.hypot(res0["series"][f"{b}_y_m"], res0["series"][f"{b}_z_m"]).max()
         assert span["station_peak_m"][f"{b}_sleeve"] == pytest.approx(peak, rel=1e-9)
     assert span["peak_m"] >= max(span["station_peak_m"].values())
-    for fig in ("displacements.png", "forces.png", "orbits.png", "speeds.png", "spectrum.png", "energy.png"):
+    # the envelope along the span (span.png): its largest is the peak, at each station the station's
+    nodes = dict(zip(span["x_m"], span["node_peak_m"]))
+    assert max(span["node_peak_m"]) == span["peak_m"] and nodes[span["peak_x_m"]] == span["peak_m"]
+    assert all(nodes[span["station_x_m"][s]] == p for s, p in span["station_peak_m"].items())
+    assert np.all(np.diff(span["x_m"]) > 0) and span["close_clearances_m"] == {"NDE_AMB": 4e-4, "DE_AMB": 4e-4}
+    for fig in ("displacements.png", "forces.png", "orbits.png", "speeds.png", "spectrum.png", "energy.png",
+                "span.png"):
         assert (out / fig).stat().st_size > 5000
     res = read_results(out / "results.h5")
     assert res["attrs"]["complete"] and res["attrs"]["package_version"]
