@@ -136,7 +136,8 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
     series = evaluate(spec, t, q, v)
     summary = summarize(spec, t, series)
     summary["rotor_deflection"] = span_deflection(spec, q)
-    summary["rotor_deflection"]["close_clearances_m"] = close_clearances(scenario)  # what it is judged against
+    gaps = close_clearances(scenario)
+    summary["rotor_deflection"]["close_clearances_m"] = gaps  # what it is judged against
     summary["complete"] = stats["complete"]
     summary["t_reached_s"] = float(t[-1])
     if not stats["complete"]:
@@ -156,7 +157,7 @@ def build_summary(scenario, spec, t, q, v, stats) -> tuple[dict, dict]:
         warnings.append(f"energy balance error {100 * err:.1f} % > {100 * ENERGY_WARN:.0f} %: the time step "
                         f"({scenario.solver.step:g} s) or the output period is too coarse; results are not trustworthy")
     warnings += split_warnings(summary.get("thermal"))
-    warnings += clearance_warnings(scenario, summary["rotor_deflection"])
+    warnings += clearance_warnings(gaps, summary["rotor_deflection"])
     summary["warnings"] = warnings
     return series, summary
 
@@ -168,11 +169,10 @@ def close_clearances(scenario) -> dict[str, float]:
     return limits_from_dict(scenario.raw.get("limits")).close_clearances_m
 
 
-def clearance_warnings(scenario, deflection: dict) -> list[str]:
-    """A warning per close clearance (``[limits] close_clearances_m``) the rotor runs past: the model has
+def clearance_warnings(gaps: dict, deflection: dict) -> list[str]:
+    """A warning per close clearance (``gaps``: :func:`close_clearances`) the rotor runs past: the model has
     no contact at an AMB stator, sensor or seal, so past its gap the run no longer shows what the
     machine does (it would rub there). The verdict judges the same numbers (``verdict.close_clearance_criteria``)."""
-    gaps = close_clearances(scenario)
     peaks = deflection.get("station_peak_m") or {}
     return [f"the rotor runs {peaks[st] * 1e3:.3f} mm off the bearings' axis at {st}, past its {gap * 1e3:.3g} mm gap "
             "([limits] close_clearances_m): a real rotor would touch the part there, which the model has no contact for"

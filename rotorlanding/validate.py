@@ -1346,11 +1346,11 @@ CLEARANCE_CASES = (*CASES, "backward_mu_0.15")
 def close_clearances(rig=None) -> tuple[dict[str, float], dict[str, str]]:
     """The rig's close clearances (``[limits] close_clearances_m`` of the paper scenarios: station ->
     radial gap [m]) and each gap's bound source (``[bounds]``, "" where none)."""
-    from .limits import limits_from_dict
+    from .run import close_clearances as scenario_gaps
     from .scenario import load_scenario
 
     sc = load_scenario(paper_dir() / CASES["forward_7000"][0], [], overlays=[rig] if rig else ())
-    gaps = limits_from_dict(sc.raw.get("limits")).close_clearances_m
+    gaps = scenario_gaps(sc)
     return gaps, {st: getattr(sc.bounds.get(f"limits.close_clearances_m.{st}"), "source", "") for st in gaps}
 
 
