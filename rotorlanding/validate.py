@@ -1151,6 +1151,30 @@ def ribbon_modal_shift(rig=None, factors=(0.5, 1.0, 1.5), speed_rpm: float = 700
     return out
 
 
+#: the session-37 ribbon screens' stored results (docs/studies/ribbon_landing_screen.py), read, not re-run
+RIBBON_SCREEN_DIR = "docs/studies/ribbon_rise_screen"
+
+
+def ribbon_screen_summary(folder: Path | None = None) -> dict | None:
+    """What the stored ribbon screens found (docs/calibration.md, session 37): the modal screen's
+    candidates (rotors within the bounds whose landed mode rises enough for Fig. 39 and moves >= 10 % with
+    K_rib), how many of them, landed, pass Fig. 39 at all three speeds and the ribbon check, and the
+    worn-bearing backward whirl on those. None when the files are absent or unreadable: the report then
+    says nothing of them."""
+    folder = Path(folder) if folder is not None else project_root() / RIBBON_SCREEN_DIR
+    try:
+        n_cand = len(json.loads((folder / "candidates.json").read_text())["rows"])
+        landed = [json.loads(x) for x in (folder / "landed.jsonl").read_text().splitlines() if x.strip()]
+        back = {b["rotor"]: b for b in (json.loads(x) for x in (folder / "backward.jsonl").read_text().splitlines()
+                                        if x.strip())}
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    keys = ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon")
+    good = [r["rotor"] for r in landed if all(r.get(k) for k in keys)]
+    bw = sorted(back[g]["frequency_hz"] for g in good if g in back and back[g].get("frequency_hz"))
+    return {"candidates": n_cand, "landed": len(landed), "all_four": good, "backward_hz": bw}
+
+
 def ribbon_mode_changes(rm: dict, landed: dict) -> dict:
     """Ribbon variants whose landed DE whirl lies nearer another landed forward mode than the one
     the base whirl locks to: {factor: (landed Hz, that mode's Hz, the matched mode's Hz)}. ``landed``:
@@ -1627,6 +1651,18 @@ def report_markdown(result: dict) -> str:
                                           for f, (hz, near, m) in sorted(moved.items()))
                               + ". The check counts that shift: the whirl's frequency is what the paper says the "
                               "ribbon influences.")
+            rs = ribbon_screen_summary() if max(abs(v) for v in sh.values()) < 0.10 else None
+            if rs and rs["all_four"]:
+                bw = rs["backward_hz"]
+                lines += ["", f"Other rotors within the bounds (`docs/studies/ribbon_landing_screen.py`, stored, not re-run "
+                          f"here; docs/calibration.md, session 37): of {rs['candidates']} rotors whose landed mode both "
+                          f"rises as Fig. 39 needs and moves >= 10 % with K_rib, {len(rs['all_four'])} of the "
+                          f"{rs['landed']} landed pass this check and Fig. 39 at all three speeds on 8 drops ("
+                          + ", ".join(rs["all_four"]) + ")"
+                          + (f"; on the worn bearing of Table 1 their backward whirl runs at {bw[0]:.0f}-{bw[-1]:.0f} Hz "
+                             f"({len(bw)} of the {len(rs['all_four'])} whirl backward in most of their drops), against Table 1's 49 Hz "
+                             "that this rig's rotor gives" if bw else "")
+                          + ". So this check fails by the rig's choice of rotor, not by the paper's equations."]
         stopped = [k.removeprefix("ribbon_") for k in rib if _de_whirl(ensembles[k])[0] != "forward"]
         if stopped:
             # the rule was set on the frequency before these landings were run; a reader may count a lost

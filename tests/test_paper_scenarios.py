@@ -745,3 +745,37 @@ def test_rig_table_shows_what_the_rotor_fit_determines_and_the_adopted_rotor_lie
     (row,) = [c for c in checks if "c_rib" in c["check"]]
     assert row["check"].startswith("bearings.DE.c_rib (tied: bearings.NDE.c_rib)") and row["pass"], row
     assert "the same value (tied in the fit)" in row["ours"]
+
+
+def test_ribbon_screen_summary_reads_the_stored_screens(tmp_path):
+    """The report's sentence on other rotors (validate.ribbon_screen_summary) counts what the stored
+    session-37 screens hold: candidates, landed rotors passing all four checks, and the backward whirl's
+    frequency only of those, only where their ensemble whirled backward; absent or torn files give None."""
+    import json
+
+    from rotorlanding.validate import ribbon_screen_summary
+
+    (tmp_path / "candidates.json").write_text(json.dumps({"rows": [{}, {}, {}]}))
+    ok = {"fig39_3000": True, "fig39_7000": True, "fig39_10000": True, "ribbon": True}
+    landed = [{"rotor": "1:1", **ok}, {"rotor": "1:2", **ok, "fig39_10000": False}, {"rotor": "1:3", **ok}]
+    (tmp_path / "landed.jsonl").write_text("\n".join(json.dumps(x) for x in landed) + "\n")
+    back = [{"rotor": "1:1", "frequency_hz": 80.0}, {"rotor": "1:2", "frequency_hz": 50.0},
+            {"rotor": "1:3", "frequency_hz": None}]
+    (tmp_path / "backward.jsonl").write_text("\n".join(json.dumps(x) for x in back) + "\n")
+    s = ribbon_screen_summary(tmp_path)
+    assert s == {"candidates": 3, "landed": 3, "all_four": ["1:1", "1:3"], "backward_hz": [80.0]}
+    (tmp_path / "backward.jsonl").write_text('{"rotor": "1:1", "freq')  # torn by a kill
+    assert ribbon_screen_summary(tmp_path) is None
+    (tmp_path / "backward.jsonl").unlink()
+    assert ribbon_screen_summary(tmp_path) is None
+
+
+def test_ribbon_screen_summary_of_the_checkout():
+    """The checkout's stored screens (docs/studies/ribbon_rise_screen) read as docs/calibration.md's
+    session 37 states them: 80 candidates landed, five passing all four checks."""
+    from rotorlanding.validate import ribbon_screen_summary
+
+    s = ribbon_screen_summary()
+    assert s is not None and s["candidates"] == s["landed"] == 80
+    assert sorted(s["all_four"]) == ["11:983", "12:416", "12:437", "12:623", "12:690"]
+    assert len(s["backward_hz"]) == 4 and min(s["backward_hz"]) > 49.0 * 1.1  # all outside Table 1's band
