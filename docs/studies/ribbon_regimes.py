@@ -10,15 +10,14 @@ circle, ``docs/studies/ensemble.py``) on three rotors, each with K_rib x0.5 / x1
 - ``rig``: scenarios/rig_rotor.toml as it is;
 - ``rigid``: the same rotor nearly rigid: main shaft 70 mm (its bound's top) and the modulus 1.2e12 Pa
   (the tool's limit; not a steel: a probe of the regime, not a design);
-- ``heavy``: ``rigid`` with the density x1.6 (12560 kg/m^3), 1.6 times the mass and inertia.
-
+- ``heavy``: ``rigid`` with the density x1.6 (12560 kg/m^3), 1.6 times the mass and inertia;
 - ``S:N`` (``--screened S:N ...``): rotor N of seed S of ``ribbon_rise_screen.py``'s stored run, its drawn
   values and the stations they put (as that screen assembles it).
 
     python docs/studies/ribbon_regimes.py [--n 8] [--workers 2] [--out DIR] [--rotors rig,rigid,heavy]
                                           [--screened S:N ...] [--screen-json PATH]
 
-About 2 min on 2 cores per three rotors. Prints one table (medians over the drops) and writes DIR/TAG.json
+About 4 min on 2 cores for the three built-in rotors. Prints one table (medians over the drops) and writes DIR/TAG.json
 per ensemble.
 """
 
