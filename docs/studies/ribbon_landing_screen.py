@@ -11,6 +11,12 @@ whirl moved >= 10 % by either variant that still whirls forward at the DE).
     python docs/studies/ribbon_landing_screen.py [--n 8] [--workers 2] [--out DIR] [--limit K]
     python docs/studies/ribbon_landing_screen.py --backward [--out DIR]   (after the above)
 
+``--funnel --screen-json J``: the same worn-bearing landing on every rotor of J (e.g. the weaker-ribbon rotors of
+``ribbon_rise_screen.py --weak``), into DIR/funnel.jsonl, before any forward landing.
+
+``--funnel-pass --screen-json J``: the five landings above and the no-whirl landing (``calm``: no whirl in >= 7 of 8)
+on the rotors of DIR/funnel.jsonl whose backward whirl is in Table 1's band; DIR/funnel_landed.jsonl.
+
 ``--backward``: for every landed rotor that passes the ribbon check, the worn-bearing landing of Table 1
 (``scenarios/paper/backward_whirl_landing.toml``, mu_rad 0.3) with the worn torque scaled to the rotor's static
 DE load, so that T_w / (r_i W) stays the rig's (2.79 N m at 248 N, 0.38), N drops; DIR/backward.jsonl. About 10 s
@@ -32,6 +38,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "docs" / "studies"))
 
 SCENARIO = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
+NO_WHIRL = ROOT / "scenarios" / "paper" / "no_whirl_landing.toml"
 CASES = {
     "7000": [],
     "7000_k05": ["bearings.DE.k_rib=3.15e7", "bearings.NDE.k_rib=3.15e7"],
@@ -52,7 +59,7 @@ def de_result(d: dict) -> tuple[int, float | None]:
 
 
 def verdicts(res: dict, n: int) -> dict:
-    out = {}
+    out = {"calm": res["nowhirl"][0] >= SHARE * n} if "nowhirl" in res else {}
     for sp, t in TARGET_HZ.items():
         k, f = res[sp]
         out[f"fig39_{sp}"] = k >= SHARE * n and f is not None and abs(f / t - 1) <= 0.10
@@ -79,8 +86,10 @@ RIG_WORN_TORQUE_N_M = 2.790095721727786  # scenarios/paper/backward_whirl_landin
 RIG_DE_LOAD_N = 248.0  # the rig rotor's static DE sleeve load (modefit.static_support_loads)
 
 
-def backward(out: Path, screen_json: Path, n: int, workers: int) -> int:
-    """The worn-bearing landing on every rotor of ``out``/landed.jsonl that passes the ribbon check."""
+def backward(out: Path, screen_json: Path, n: int, workers: int, funnel: bool = False) -> int:
+    """The worn-bearing landing on every rotor of ``out``/landed.jsonl that passes the ribbon check, or
+    (``funnel``) on every rotor of ``screen_json``, into ``out``/funnel.jsonl: Table 1's landing first, as a
+    cheap filter before the forward cases."""
     from ensemble import ensemble
     from ribbon_regimes import screened_sets
     import rotor_rise_screen as rrs
@@ -89,9 +98,11 @@ def backward(out: Path, screen_json: Path, n: int, workers: int) -> int:
 
     base = load_toml(ROOT / "scenarios" / "rig_rotor.toml")
     rows = json.loads(screen_json.read_text())["rows"]
-    log = out / "backward.jsonl"
+    log = out / ("funnel.jsonl" if funnel else "backward.jsonl")
     done = {x["rotor"] for x in _records(log)}
-    for rec in _records(out / "landed.jsonl"):
+    todo = ([{"rotor": f"{r['seed']}:{r['sample']}", "ribbon": True} for r in rows] if funnel
+            else _records(out / "landed.jsonl"))
+    for rec in todo:
         if not rec["ribbon"] or rec["rotor"] in done:
             continue
         seed, sample = (int(x) for x in rec["rotor"].split(":"))
@@ -105,7 +116,7 @@ def backward(out: Path, screen_json: Path, n: int, workers: int) -> int:
         st = json.loads((out / "runs" / f"{tag}.json").read_text())["stats"]
         b = {"rotor": rec["rotor"], "de_load_n": w, "worn_drag_torque": tw, "counts": st["counts"],
              "frequency_hz": st.get("frequency_hz"), "onset_s": st.get("onset_s"),
-             "all_four": all(rec[k] for k in ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon"))}
+             "all_four": all(rec.get(k) for k in ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon"))}
         with open(log, "a") as fh:
             fh.write(json.dumps(b) + "\n")
             fh.flush()
@@ -130,20 +141,33 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default="study_out/ribbon_landing_screen")
     ap.add_argument("--limit", type=int, default=0, help="land only the first K candidates (0: all)")
     ap.add_argument("--backward", action="store_true", help="the worn-bearing landing on the ribbon-passing rotors")
+    ap.add_argument("--funnel", action="store_true", help="the worn-bearing landing alone on every rotor of --screen-json")
+    ap.add_argument("--funnel-pass", action="store_true",
+                    help="land the forward cases and the calm landing on the rotors of DIR/funnel.jsonl whose "
+                         "backward whirl lies in Table 1's band (49 Hz +/- 10 %%, >= 7 of 8 drops), into DIR/funnel_landed.jsonl")
     ap.add_argument("--screen-json", default=str(ROOT / "docs" / "studies" / "ribbon_rise_screen" / "candidates.json"))
     a = ap.parse_args(argv)
     sj = Path(a.screen_json)
-    if a.backward:
-        return backward(Path(a.out), sj, a.n, a.workers)
+    if a.backward or a.funnel:
+        return backward(Path(a.out), sj, a.n, a.workers, funnel=a.funnel)
     rows = [r for r in json.loads(sj.read_text())["rows"]
             if "modes_hz" in r and all(r["modes_hz"]) and all(r["rib_7000_hz"].values())]
-    cands = [r for r in rows if (lambda j: j["rise_ok"] and j["ribbon"])(rrs.judge(r))]
+    out = Path(a.out)
+    cases = dict(CASES)
+    if a.funnel_pass:
+        # Table 1's backward whirl first (the funnel), then everything else on its survivors
+        keep = {b["rotor"] for b in _records(out / "funnel.jsonl")
+                if b["frequency_hz"] and abs(b["frequency_hz"] / 49.0 - 1) <= 0.10
+                and b["counts"].get("backward", 0) >= SHARE * a.n}
+        cands = [r for r in rows if f"{r['seed']}:{r['sample']}" in keep]
+        cases["nowhirl"] = None
+    else:
+        cands = [r for r in rows if (lambda j: j["rise_ok"] and j["ribbon"])(rrs.judge(r))]
     cands.sort(key=lambda r: sum(abs(rrs.LOCK * f / t - 1) for f, t in zip(r["modes_hz"], rrs.TARGET_HZ)))
     if a.limit:
         cands = cands[:a.limit]
-    out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    log = out / "landed.jsonl"
+    log = out / ("funnel_landed.jsonl" if a.funnel_pass else "landed.jsonl")
     done = {x["rotor"] for x in _records(log)}
     print(f"{len(cands)} candidates (modal rise and ribbon move), {len(done)} already landed", flush=True)
     for r in cands:
@@ -152,8 +176,13 @@ def main(argv=None) -> int:
             continue
         sets = screened_sets(sj, pick)
         res = {}
-        for case, csets in CASES.items():
+        for case, csets in cases.items():
             tag = f"{r['seed']}_{r['sample']}_{case}"
+            if csets is None:  # the no-whirl landing (mu_rad 0.15, healthy bearings): calm drops counted
+                ensemble(str(NO_WHIRL), a.n, sets, workers=a.workers, out=str(out / "runs"), tag=tag)
+                st = json.loads((out / "runs" / f"{tag}.json").read_text())["stats"]
+                res[case] = (st["counts"].get("none", 0), None)
+                continue
             ensemble(str(SCENARIO), a.n, [*sets, *csets], workers=a.workers, out=str(out / "runs"), tag=tag)
             res[case] = de_result(json.loads((out / "runs" / f"{tag}.json").read_text()))
         rec = {"rotor": pick, "modes_hz": r["modes_hz"], "results": res, **verdicts(res, a.n)}
@@ -162,7 +191,7 @@ def main(argv=None) -> int:
             fh.flush()
             os.fsync(fh.fileno())
         print(pick, " ".join(f"{c}: {k}/{a.n} {f or float('nan'):.1f}" for c, (k, f) in res.items()),
-              {k: v for k, v in rec.items() if k.startswith(("fig39", "ribbon"))}, flush=True)
+              {k: v for k, v in rec.items() if k.startswith(("fig39", "ribbon", "calm"))}, flush=True)
     recs = _records(log)
     keys = ["fig39_3000", "fig39_7000", "fig39_10000", "ribbon"]
     print(f"{len(recs)} rotors landed; passing: " + ", ".join(f"{k} {sum(x[k] for x in recs)}" for k in keys)
