@@ -39,13 +39,9 @@ ROTORS = {
     "heavy": ["rotor.materials.steel.youngs_modulus=1.2e12", "rotor.sections.3.outer_diameter=0.07",
               "rotor.materials.steel.density=12560"],
 }
-CASES = {
-    "7000 rpm": [],
-    "7000 rpm, K_rib x0.5": ["bearings.DE.k_rib=3.15e7", "bearings.NDE.k_rib=3.15e7"],
-    "7000 rpm, K_rib x1.5": ["bearings.DE.k_rib=9.45e7", "bearings.NDE.k_rib=9.45e7"],
-    "3000 rpm": ["operating.speed_rpm=3000"],
-    "10000 rpm": ["operating.speed_rpm=10000"],
-}
+#: the table's rows: ribbon_landing_screen.py's cases (one definition of their overrides), labelled
+LABELS = {"7000": "7000 rpm", "7000_k05": "7000 rpm, K_rib x0.5", "7000_k15": "7000 rpm, K_rib x1.5",
+          "3000": "3000 rpm", "10000": "10000 rpm"}
 
 
 def screened_sets(screen_json: Path, pick: str) -> list[str]:
@@ -81,6 +77,7 @@ def row(rotor: str, case: str, d: dict) -> str:
 
 def main(argv=None) -> int:
     from ensemble import ensemble
+    from ribbon_landing_screen import CASES
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=8)
@@ -96,9 +93,9 @@ def main(argv=None) -> int:
              "DE vertical displacement min / max [mm] | DE vertical force on the rotor min / max [kN] | "
              "peak excursion at NDE_AMB / DE_AMB [mm] |", "|---|---|---|---|---|---|---|---|"]
     for rotor, rsets in rotors.items():
-        for case, csets in CASES.items():
+        for key, case in LABELS.items():
             tag = f"{rotor.replace(':', '_')}_{case.replace(' ', '').replace(',', '_').replace('.', '')}"
-            ensemble(str(SCENARIO), a.n, [*rsets, *csets], workers=a.workers, out=a.out, tag=tag)
+            ensemble(str(SCENARIO), a.n, [*rsets, *CASES[key]], workers=a.workers, out=a.out, tag=tag)
             d = json.loads((Path(a.out) / f"{tag}.json").read_text())
             lines.append(row(rotor, case, d))
             print(lines[-1], flush=True)
