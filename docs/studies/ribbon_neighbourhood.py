@@ -19,6 +19,7 @@ rotor that already has it, the chance should be better. This script draws childr
     python docs/studies/ribbon_neighbourhood.py [--children 600] [--sigma 0.06] [--keep 60] [--out DIR]
     python docs/studies/ribbon_landing_screen.py --funnel --screen-json DIR/children.json --out DIR
     python docs/studies/ribbon_landing_screen.py --funnel-pass --screen-json DIR/children.json --out DIR
+    python docs/studies/ribbon_neighbourhood.py --report --out DIR   (the six checks and the table rows, per child)
 
 Seeded (``--seed``): the same command draws the same children. The modal part takes about 4 min on 2 cores.
 """
@@ -103,6 +104,64 @@ def fig39_distance(r: dict) -> float:
     return sum(abs(rib.LOCK * f / t - 1) for f, t in zip(r["modes_hz"], rib.TARGET_HZ))
 
 
+#: the table rows a landing reads beside the six checks: (label, ensemble, stats key, index, experiment, band, scale)
+#: (validate.TABLE_ROWS with the bands of its report: the larger of 10 % and the paper's own error)
+TABLE = [("T1 disp max [mm]", "bw", "v_disp_range_m", 1, 0.2, 0.05, 1e3),
+         ("T1 disp min [mm]", "bw", "v_disp_range_m", 0, -0.4, 0.12, 1e3),
+         ("T1 onset [s]", "bw", "onset_s", None, 0.4, 0.04, 1.0),
+         ("T2 disp max [mm]", "7000", "v_disp_range_m", 1, 0.15, 0.05, 1e3),
+         ("T2 disp min [mm]", "7000", "v_disp_range_m", 0, -0.3, 0.03, 1e3),
+         ("T2 force max [kN]", "7000", "v_force_range_n", 1, 4.5, 0.45, 1e-3),
+         ("T2 force min [kN]", "7000", "v_force_range_n", 0, -0.5, 1.0, 1e-3)]
+AMB = ("NDE_AMB", "DE_AMB")
+AMB_GAP_M = 0.4e-3  # scenarios/rig/rig.toml [limits] close_clearances_m
+
+
+def report(out: Path) -> int:
+    """The landed children (``ribbon_landing_screen.py --funnel-pass``): the six checks, the table rows above from
+    the stored ensembles, and the largest AMB excursion (median over the drops, largest over the landings)."""
+    import statistics
+
+    sys.path.insert(0, str(ROOT / "docs" / "studies"))
+    from ribbon_landing_screen import _records
+
+    funnel = {b["rotor"]: b for b in _records(out / "funnel.jsonl")}
+    recs = _records(out / "funnel_landed.jsonl")
+    checks = ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon", "calm")
+    rows = []
+    for rec in recs:
+        seed, sample = rec["rotor"].split(":")
+        runs = {case: json.loads((out / "runs" / f"{seed}_{sample}_{case}.json").read_text())
+                for case in ("bw", "7000", "7000_k05", "7000_k15", "10000", "3000", "nowhirl")}
+        vals = []
+        for _, case, key, i, ref, band, scale in TABLE:
+            x = runs[case]["stats"].get(key)
+            x = None if x is None else (x[i] if i is not None else x) * scale
+            vals.append((x, x is not None and abs(x - ref) <= band))
+        amb = max(statistics.median(m["span_peak_m"][st] for m in r["members"]) for r in runs.values() for st in AMB)
+        ok = [bool(rec[k]) for k in checks] + [True]  # Table 1's band is the funnel's own filter
+        rows.append((sum(ok), rec, vals, amb, funnel[rec["rotor"]]))
+    rows.sort(key=lambda t: (-t[0], -sum(v[1] for v in t[2]), t[3]))
+    lines = ["| rotor | DE load [N] | f 3000 / 7000 / 10000 [Hz] | ribbon | calm | T1 f [Hz] | checks | "
+             + " | ".join(t[0] for t in TABLE) + " | largest AMB excursion [mm] |", "|" + "---|" * (8 + len(TABLE))]
+    for n_ok, rec, vals, amb, b in rows:
+        f = " / ".join(("{:.1f}".format(rec["results"][sp][1]) if rec["results"][sp][1] else "-")
+                       + ("" if rec[f"fig39_{sp}"] else "x") for sp in ("3000", "7000", "10000"))
+        rib = "-" if rec["ribbon_move"] is None else f"{rec['ribbon_move']:.1%}" + ("" if rec["ribbon"] else "x")
+        cells = " | ".join("-" if x is None else f"{x:.3g}" + ("" if ok else "x") for x, ok in vals)
+        lines.append(f"| {rec['rotor']} | {b['de_load_n']:.0f} | {f} | {rib} | {rec['results']['nowhirl'][0]}/8"
+                     f"{'' if rec['calm'] else 'x'} | {b['frequency_hz']:.1f} | {n_ok} of 6 | {cells} | {amb * 1e3:.2f} |")
+    lines.append(f"\n{len(rows)} landed; all six: {sum(t[0] == 6 for t in rows)}. x marks a fail (the table rows: "
+                 f"validate's bands; the AMB gap is {AMB_GAP_M * 1e3:.1f} mm). Medians over 8 drops; 'checks' counts "
+                 "Fig. 39 x3, the ribbon, the calm landing and Table 1's band (the funnel's filter).")
+    text = "\n".join(lines) + "\n"
+    print(text, end="")
+    tmp = out / "report.md.tmp"
+    tmp.write_text(text)
+    tmp.replace(out / "report.md")
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default="study_out/ribbon_neighbourhood")
@@ -111,7 +170,10 @@ def main(argv=None) -> int:
     ap.add_argument("--keep", type=int, default=60, help="children per parent written for the landings")
     ap.add_argument("--seed", type=int, default=38)
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--report", action="store_true", help="tabulate DIR's landed children (after --funnel-pass)")
     a = ap.parse_args(argv)
+    if a.report:
+        return report(Path(a.out))
     weak = json.loads(WEAK.read_text())["rows"]
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
