@@ -1175,6 +1175,29 @@ def ribbon_screen_summary(folder: Path | None = None) -> dict | None:
     return {"candidates": n_cand, "landed": len(landed), "all_four": good, "backward_hz": bw}
 
 
+#: the stored funnels (docs/calibration.md, sessions 37 and 38): rotors whose worn-bearing landing whirls
+#: backward in Table 1's band, landed at the three speeds, with the ribbon variants and the no-whirl landing
+JOINT_SCREEN_FILES = ("docs/studies/ribbon_rise_screen/funnel_landed.jsonl",
+                      "docs/studies/ribbon_neighbourhood/funnel_landed.jsonl")
+JOINT_CHECKS = ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon", "calm")
+
+
+def joint_screen_summary(files=None) -> dict | None:
+    """What the stored funnels found when every ask is put to one rotor: of the rotors already in Table 1's
+    band (the funnel's filter), how many pass Fig. 39 at all three speeds, the ribbon check and the calm
+    landing (``all``), how many miss exactly one (``one_short``) and of those how many miss the ribbon check.
+    None when a file is absent or unreadable: the report then says nothing of them."""
+    paths = [Path(f) for f in files] if files is not None else [project_root() / f for f in JOINT_SCREEN_FILES]
+    try:
+        recs = [json.loads(x) for p in paths for x in p.read_text().splitlines() if x.strip()]
+        fails = {r["rotor"]: [k for k in JOINT_CHECKS if not r[k]] for r in recs}
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    short = [k for k, f in fails.items() if len(f) == 1]
+    return {"landed": len(fails), "all": sorted(k for k, f in fails.items() if not f), "one_short": len(short),
+            "one_short_ribbon": sum(fails[k] == ["ribbon"] for k in short)}
+
+
 def ribbon_mode_changes(rm: dict, landed: dict) -> dict:
     """Ribbon variants whose landed DE whirl lies nearer another landed forward mode than the one
     the base whirl locks to: {factor: (landed Hz, that mode's Hz, the matched mode's Hz)}. ``landed``:
@@ -1662,7 +1685,17 @@ def report_markdown(result: dict) -> str:
                           + (f"; on the worn bearing of Table 1 their backward whirl runs at {bw[0]:.0f}-{bw[-1]:.0f} Hz "
                              f"({len(bw)} of the {len(rs['all_four'])} whirl backward in most of their drops), against Table 1's 49 Hz "
                              "that this rig's rotor gives" if bw else "")
-                          + ". So this check fails by the rig's choice of rotor, not by the paper's equations."]
+                          + ". So on the paper's equations rotors within the bounds pass this check."]
+                js = joint_screen_summary()
+                if js and js["landed"]:
+                    lines[-1] += (f" None found passes it with everything else this rig passes: of {js['landed']} rotors "
+                                  "whose worn-bearing landing whirls backward in Table 1's band, landed at the three speeds, "
+                                  "with the ribbon variants and the no-whirl landing (`ribbon_landing_screen.py "
+                                  "--funnel-pass`, stored; sessions 37-38), "
+                                  f"{len(js['all'])} pass{'es' if len(js['all']) == 1 else ''} Fig. 39 at all three speeds, "
+                                  f"this check and the calm landing together"
+                                  + (f" ({', '.join(js['all'])})" if js["all"] else "")
+                                  + f"; {js['one_short']} miss one of the five, {js['one_short_ribbon']} of them this one.")
         stopped = [k.removeprefix("ribbon_") for k in rib if _de_whirl(ensembles[k])[0] != "forward"]
         if stopped:
             # the rule was set on the frequency before these landings were run; a reader may count a lost

@@ -770,6 +770,34 @@ def test_ribbon_screen_summary_reads_the_stored_screens(tmp_path):
     assert ribbon_screen_summary(tmp_path) is None
 
 
+def test_joint_screen_summary_counts_the_funnels(tmp_path):
+    """validate.joint_screen_summary over several funnel files: a rotor passing the five checks is listed, one
+    missing exactly one is counted (and whether that one is the ribbon check), a torn or absent file gives None."""
+    import json
+
+    from rotorlanding.validate import JOINT_CHECKS, joint_screen_summary
+
+    ok = dict.fromkeys(JOINT_CHECKS, True)
+    a = [{"rotor": "1:1", **ok}, {"rotor": "1:2", **ok, "ribbon": False},
+         {"rotor": "1:3", **ok, "ribbon": False, "calm": False}]
+    b = [{"rotor": "7:1", **ok, "fig39_10000": False}]
+    fa, fb = tmp_path / "a.jsonl", tmp_path / "b.jsonl"
+    fa.write_text("\n".join(json.dumps(x) for x in a) + "\n")
+    fb.write_text("\n".join(json.dumps(x) for x in b) + "\n")
+    assert joint_screen_summary([fa, fb]) == {"landed": 4, "all": ["1:1"], "one_short": 2, "one_short_ribbon": 1}
+    fb.write_text('{"rotor": "7:1", "fig39')  # torn by a kill
+    assert joint_screen_summary([fa, fb]) is None
+    assert joint_screen_summary([fa, tmp_path / "absent.jsonl"]) is None
+
+
+def test_joint_screen_summary_of_the_checkout():
+    """The checkout's stored funnels read as docs/calibration.md's sessions 37-38 state them: 20 + 21 rotors in
+    Table 1's band landed, none passing the five checks, 8 missing one (7 of them the ribbon check)."""
+    from rotorlanding.validate import joint_screen_summary
+
+    assert joint_screen_summary() == {"landed": 41, "all": [], "one_short": 8, "one_short_ribbon": 7}
+
+
 def test_ribbon_screen_summary_of_the_checkout():
     """The checkout's stored screens (docs/studies/ribbon_rise_screen) read as docs/calibration.md's
     session 37 states them: 80 candidates landed, five passing all four checks."""
