@@ -1688,14 +1688,16 @@ def report_markdown(result: dict) -> str:
                           + ". So on the paper's equations rotors within the bounds pass this check."]
                 js = joint_screen_summary()
                 if js and js["landed"]:
-                    lines[-1] += (f" None found passes it with everything else this rig passes: of {js['landed']} rotors "
+                    lines[-1] += (("" if js["all"] else " None found passes it together with Fig. 39, Table 1's backward "
+                                   "frequency and the calm landing.")
+                                  + f" Of {js['landed']} rotors "
                                   "whose worn-bearing landing whirls backward in Table 1's band, landed at the three speeds, "
                                   "with the ribbon variants and the no-whirl landing (`ribbon_landing_screen.py "
                                   "--funnel-pass`, stored; sessions 37-38), "
                                   f"{len(js['all'])} pass{'es' if len(js['all']) == 1 else ''} Fig. 39 at all three speeds, "
                                   f"this check and the calm landing together"
                                   + (f" ({', '.join(js['all'])})" if js["all"] else "")
-                                  + f"; {js['one_short']} miss one of the five, {js['one_short_ribbon']} of them this one.")
+                                  + f"; {js['one_short']} miss only one of the five, {js['one_short_ribbon']} of them this one.")
         stopped = [k.removeprefix("ribbon_") for k in rib if _de_whirl(ensembles[k])[0] != "forward"]
         if stopped:
             # the rule was set on the frequency before these landings were run; a reader may count a lost
