@@ -1688,8 +1688,9 @@ def report_markdown(result: dict) -> str:
                           + ". So on the paper's equations rotors within the bounds pass this check."]
                 js = joint_screen_summary()
                 if js and js["landed"]:
-                    lines[-1] += (("" if js["all"] else " None found passes it together with Fig. 39, Table 1's backward "
-                                   "frequency and the calm landing.")
+                    lines[-1] += (("" if js["all"] else " None found at the rig's ribbon damping passes it together with "
+                                   "Fig. 39, Table 1's backward frequency and the calm landing (docs/calibration.md, session "
+                                   "38, for lower damping: one rotor passes all on 8 drops and misses two on 32).")
                                   + f" Of {js['landed']} rotors "
                                   "whose worn-bearing landing whirls backward in Table 1's band, landed at the three speeds, "
                                   "with the ribbon variants and the no-whirl landing (`ribbon_landing_screen.py "

@@ -22,6 +22,9 @@ on the rotors of DIR/funnel.jsonl whose backward whirl is in Table 1's band; DIR
 DE load, so that T_w / (r_i W) stays the rig's (2.79 N m at 248 N, 0.38), N drops; DIR/backward.jsonl. About 10 s
 a rotor.
 
+``--set KEY=VALUE`` (repeatable) adds an override to every landing (e.g. the ribbon's damping for both bearings);
+``--rotors S:N,...`` lands only those. Use another DIR for each set of overrides.
+
 Resumable: each rotor's result is appended to DIR/landed.jsonl once all its landings are done (a killed run
 loses at most the rotor it was on). Prints one line per rotor and the counts. About 30 s a rotor on 2 cores (80 rotors: 39 min).
 """
@@ -86,7 +89,7 @@ RIG_WORN_TORQUE_N_M = 2.790095721727786  # scenarios/paper/backward_whirl_landin
 RIG_DE_LOAD_N = 248.0  # the rig rotor's static DE sleeve load (modefit.static_support_loads)
 
 
-def backward(out: Path, screen_json: Path, n: int, workers: int, funnel: bool = False) -> int:
+def backward(out: Path, screen_json: Path, n: int, workers: int, funnel: bool = False, extra=(), only=()) -> int:
     """The worn-bearing landing on every rotor of ``out``/landed.jsonl that passes the ribbon check, or
     (``funnel``) on every rotor of ``screen_json``, into ``out``/funnel.jsonl: Table 1's landing first, as a
     cheap filter before the forward cases."""
@@ -103,7 +106,7 @@ def backward(out: Path, screen_json: Path, n: int, workers: int, funnel: bool = 
     todo = ([{"rotor": f"{r['seed']}:{r['sample']}", "ribbon": True} for r in rows] if funnel
             else _records(out / "landed.jsonl"))
     for rec in todo:
-        if not rec["ribbon"] or rec["rotor"] in done:
+        if not rec["ribbon"] or rec["rotor"] in done or (only and rec["rotor"] not in only):
             continue
         seed, sample = (int(x) for x in rec["rotor"].split(":"))
         r = next(r for r in rows if r["seed"] == seed and r["sample"] == sample)
@@ -111,7 +114,7 @@ def backward(out: Path, screen_json: Path, n: int, workers: int, funnel: bool = 
         tw = RIG_WORN_TORQUE_N_M * w / RIG_DE_LOAD_N
         tag = f"{seed}_{sample}_bw"
         ensemble(str(ROOT / "scenarios" / "paper" / "backward_whirl_landing.toml"), n,
-                 [*screened_sets(screen_json, rec["rotor"]), f"bearings.DE.worn_drag_torque={tw:.4g}"],
+                 [*screened_sets(screen_json, rec["rotor"]), f"bearings.DE.worn_drag_torque={tw:.4g}", *extra],
                  workers=workers, out=str(out / "runs"), tag=tag)
         st = json.loads((out / "runs" / f"{tag}.json").read_text())["stats"]
         b = {"rotor": rec["rotor"], "de_load_n": w, "worn_drag_torque": tw, "counts": st["counts"],
@@ -146,10 +149,16 @@ def main(argv=None) -> int:
                     help="land the forward cases and the calm landing on the rotors of DIR/funnel.jsonl whose "
                          "backward whirl lies in Table 1's band (49 Hz +/- 10 %%, >= 7 of 8 drops), into DIR/funnel_landed.jsonl")
     ap.add_argument("--screen-json", default=str(ROOT / "docs" / "studies" / "ribbon_rise_screen" / "candidates.json"))
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="an override added to every landing (e.g. bearings.DE.c_rib=1500), after the rotor's own")
+    ap.add_argument("--keep-all", action="store_true",
+                    help="--funnel-pass on every rotor of DIR/funnel.jsonl, in Table 1's band or not")
+    ap.add_argument("--rotors", default="", help="comma-separated seed:sample; only these (default: all)")
     a = ap.parse_args(argv)
     sj = Path(a.screen_json)
+    only = {x for x in a.rotors.split(",") if x}
     if a.backward or a.funnel:
-        return backward(Path(a.out), sj, a.n, a.workers, funnel=a.funnel)
+        return backward(Path(a.out), sj, a.n, a.workers, funnel=a.funnel, extra=a.set, only=only)
     rows = [r for r in json.loads(sj.read_text())["rows"]
             if "modes_hz" in r and all(r["modes_hz"]) and all(r["rib_7000_hz"].values())]
     out = Path(a.out)
@@ -157,12 +166,14 @@ def main(argv=None) -> int:
     if a.funnel_pass:
         # Table 1's backward whirl first (the funnel), then everything else on its survivors
         keep = {b["rotor"] for b in _records(out / "funnel.jsonl")
-                if b["frequency_hz"] and abs(b["frequency_hz"] / 49.0 - 1) <= 0.10
-                and b["counts"].get("backward", 0) >= SHARE * a.n}
+                if a.keep_all or (b["frequency_hz"] and abs(b["frequency_hz"] / 49.0 - 1) <= 0.10
+                                  and b["counts"].get("backward", 0) >= SHARE * a.n)}
         cands = [r for r in rows if f"{r['seed']}:{r['sample']}" in keep]
         cases["nowhirl"] = None
     else:
         cands = [r for r in rows if (lambda j: j["rise_ok"] and j["ribbon"])(rrs.judge(r))]
+    if only:
+        cands = [r for r in cands if f"{r['seed']}:{r['sample']}" in only]
     cands.sort(key=lambda r: sum(abs(rrs.LOCK * f / t - 1) for f, t in zip(r["modes_hz"], rrs.TARGET_HZ)))
     if a.limit:
         cands = cands[:a.limit]
@@ -174,7 +185,7 @@ def main(argv=None) -> int:
         pick = f"{r['seed']}:{r['sample']}"
         if pick in done:
             continue
-        sets = screened_sets(sj, pick)
+        sets = [*screened_sets(sj, pick), *a.set]
         res = {}
         for case, csets in cases.items():
             tag = f"{r['seed']}_{r['sample']}_{case}"
