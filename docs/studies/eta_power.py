@@ -34,7 +34,6 @@ def drop(d: Path, t0: float) -> dict:
     end = t >= t[-1] - 0.1
     b = sc["bearings"]["DE"]
     krib, crib, eta = b["k_rib"], b["c_rib"], b["eta"]
-    dt = np.gradient(t)
     jy, jz = a["DE_y_m"], a["DE_z_m"]
     vjy, vjz = np.gradient(jy, t), np.gradient(jz, t)
     oy, oz = a["DE_race_y_m"], a["DE_race_z_m"]
