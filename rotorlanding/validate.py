@@ -1151,6 +1151,12 @@ def ribbon_modal_shift(rig=None, factors=(0.5, 1.0, 1.5), speed_rpm: float = 700
     return out
 
 
+def _read_jsonl(path: Path) -> list[dict]:
+    """The records of a stored JSON-lines file; a torn line raises (ValueError), so a summary built on it is
+    dropped rather than built on part of a run."""
+    return [json.loads(x) for x in Path(path).read_text().splitlines() if x.strip()]
+
+
 #: the session-37 ribbon screens' stored results (docs/studies/ribbon_landing_screen.py), read, not re-run
 RIBBON_SCREEN_DIR = "docs/studies/ribbon_rise_screen"
 
@@ -1164,13 +1170,11 @@ def ribbon_screen_summary(folder: Path | None = None) -> dict | None:
     folder = Path(folder) if folder is not None else project_root() / RIBBON_SCREEN_DIR
     try:
         n_cand = len(json.loads((folder / "candidates.json").read_text())["rows"])
-        landed = [json.loads(x) for x in (folder / "landed.jsonl").read_text().splitlines() if x.strip()]
-        back = {b["rotor"]: b for b in (json.loads(x) for x in (folder / "backward.jsonl").read_text().splitlines()
-                                        if x.strip())}
+        landed = _read_jsonl(folder / "landed.jsonl")
+        back = {b["rotor"]: b for b in _read_jsonl(folder / "backward.jsonl")}
     except (OSError, ValueError, KeyError, TypeError):
         return None
-    keys = ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon")
-    good = [r["rotor"] for r in landed if all(r.get(k) for k in keys)]
+    good = [r["rotor"] for r in landed if all(r.get(k) for k in JOINT_CHECKS[:4])]
     bw = sorted(back[g]["frequency_hz"] for g in good if g in back and back[g].get("frequency_hz"))
     return {"candidates": n_cand, "landed": len(landed), "all_four": good, "backward_hz": bw}
 
@@ -1189,7 +1193,7 @@ def joint_screen_summary(files=None) -> dict | None:
     None when a file is absent or unreadable: the report then says nothing of them."""
     paths = [Path(f) for f in files] if files is not None else [project_root() / f for f in JOINT_SCREEN_FILES]
     try:
-        recs = [json.loads(x) for p in paths for x in p.read_text().splitlines() if x.strip()]
+        recs = [r for p in paths for r in _read_jsonl(p)]
         fails = {r["rotor"]: [k for k in JOINT_CHECKS if not r[k]] for r in recs}
     except (OSError, ValueError, KeyError, TypeError):
         return None

@@ -74,6 +74,13 @@ def verdicts(res: dict, n: int) -> dict:
     return out
 
 
+def in_table1_band(b: dict) -> bool:
+    """A worn-bearing ensemble record (``funnel.jsonl``) whirls backward in Table 1's band: 49 Hz +/- 10 % in
+    >= SHARE of its drops."""
+    n = sum(b["counts"].values())
+    return bool(b["frequency_hz"]) and abs(b["frequency_hz"] / 49.0 - 1) <= 0.10 and b["counts"].get("backward", 0) >= SHARE * n
+
+
 def _records(log: Path) -> list[dict]:
     """The finished rotors of ``log``; a line torn by a kill is skipped (that rotor is landed again)."""
     recs = []
@@ -165,9 +172,7 @@ def main(argv=None) -> int:
     cases = dict(CASES)
     if a.funnel_pass:
         # Table 1's backward whirl first (the funnel), then everything else on its survivors
-        keep = {b["rotor"] for b in _records(out / "funnel.jsonl")
-                if a.keep_all or (b["frequency_hz"] and abs(b["frequency_hz"] / 49.0 - 1) <= 0.10
-                                  and b["counts"].get("backward", 0) >= SHARE * a.n)}
+        keep = {b["rotor"] for b in _records(out / "funnel.jsonl") if a.keep_all or in_table1_band(b)}
         cands = [r for r in rows if f"{r['seed']}:{r['sample']}" in keep]
         cases["nowhirl"] = None
     else:

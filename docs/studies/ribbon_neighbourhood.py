@@ -130,11 +130,11 @@ def report(out: Path) -> int:
     import statistics
 
     sys.path.insert(0, str(ROOT / "docs" / "studies"))
-    from ribbon_landing_screen import _records
+    from ribbon_landing_screen import _records, in_table1_band
+    from rotorlanding.validate import JOINT_CHECKS as checks  # Fig. 39 x3, the ribbon, the calm landing
 
     funnel = {b["rotor"]: b for b in _records(out / "funnel.jsonl")}
     recs = _records(out / "funnel_landed.jsonl")
-    checks = ("fig39_3000", "fig39_7000", "fig39_10000", "ribbon", "calm")
     rows = []
     for rec in recs:
         seed, sample = rec["rotor"].split(":")
@@ -147,9 +147,7 @@ def report(out: Path) -> int:
             vals.append((x, x is not None and abs(x - ref) <= band))
         amb = max(statistics.median(m["span_peak_m"][st] for m in r["members"]) for r in runs.values() for st in AMB)
         b = funnel[rec["rotor"]]
-        n = sum(b["counts"].values())
-        t1 = bool(b["frequency_hz"]) and abs(b["frequency_hz"] / 49.0 - 1) <= 0.10 and b["counts"].get("backward", 0) >= 0.875 * n
-        ok = [bool(rec[k]) for k in checks] + [t1]  # Table 1's band: the funnel's filter, unless --keep-all
+        ok = [bool(rec[k]) for k in checks] + [in_table1_band(b)]  # the funnel's filter, unless --keep-all
         rows.append((sum(ok), rec, vals, amb, b))
     rows.sort(key=lambda t: (-t[0], -sum(v[1] for v in t[2]), t[3]))
     lines = ["| rotor | DE load [N] | f 3000 / 7000 / 10000 [Hz] | ribbon | calm | T1 f [Hz] | checks | "
