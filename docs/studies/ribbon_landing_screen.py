@@ -15,7 +15,8 @@ whirl moved >= 10 % by either variant that still whirls forward at the DE).
 ``ribbon_rise_screen.py --weak``), into DIR/funnel.jsonl, before any forward landing.
 
 ``--funnel-pass --screen-json J``: the five landings above and the no-whirl landing (``calm``: no whirl in >= 7 of 8)
-on the rotors of DIR/funnel.jsonl whose backward whirl is in Table 1's band; DIR/funnel_landed.jsonl.
+on the rotors of DIR/funnel.jsonl whose backward whirl is in Table 1's band; DIR/funnel_landed.jsonl (with the no-whirl
+landing's median DE race / rotor speed and DE force range: whether the DE lands at all, session 39).
 
 ``--backward``: for every landed rotor that passes the ribbon check, the worn-bearing landing of Table 1
 (``scenarios/paper/backward_whirl_landing.toml``, mu_rad 0.3) with the worn torque scaled to the rotor's static
@@ -191,17 +192,21 @@ def main(argv=None) -> int:
         if pick in done:
             continue
         sets = [*screened_sets(sj, pick), *a.set]
-        res = {}
+        res, landed_de = {}, {}
         for case, csets in cases.items():
             tag = f"{r['seed']}_{r['sample']}_{case}"
             if csets is None:  # the no-whirl landing (mu_rad 0.15, healthy bearings): calm drops counted
                 ensemble(str(NO_WHIRL), a.n, sets, workers=a.workers, out=str(out / "runs"), tag=tag)
                 st = json.loads((out / "runs" / f"{tag}.json").read_text())["stats"]
                 res[case] = (st["counts"].get("none", 0), None)
+                # whether the DE lands at all (validate's race spin-up check, >= 0.97): a DE held up by the
+                # coupling stays calm without touching its race (session 39)
+                landed_de = {"nowhirl_de_race_to_rotor": st.get("race_to_rotor"),
+                             "nowhirl_de_force_range_n": st.get("v_force_range_n")}
                 continue
             ensemble(str(SCENARIO), a.n, [*sets, *csets], workers=a.workers, out=str(out / "runs"), tag=tag)
             res[case] = de_result(json.loads((out / "runs" / f"{tag}.json").read_text()))
-        rec = {"rotor": pick, "modes_hz": r["modes_hz"], "results": res, **verdicts(res, a.n)}
+        rec = {"rotor": pick, "modes_hz": r["modes_hz"], "results": res, **verdicts(res, a.n), **landed_de}
         with open(log, "a") as fh:  # one line per finished rotor: a kill leaves whole lines before it
             fh.write(json.dumps(rec) + "\n")
             fh.flush()
