@@ -34,7 +34,7 @@ import numpy as np
 from .params import BearingLaws, RotorLaws, bearing_laws, rotor_laws
 from .reduction import LinearRotor, craig_bampton
 from .scenario import Scenario
-from .timoshenko import GRAVITY, RotorFE, assemble, with_landing_supports
+from .timoshenko import GRAVITY, RotorFE, assemble, landing_support_preload, with_landing_supports
 
 
 @dataclass
@@ -66,7 +66,8 @@ class LandingSpec:
     K: np.ndarray
     C: np.ndarray
     G: np.ndarray
-    f_gravity: np.ndarray       # reduced gravity load on the lateral coordinates
+    f_gravity: np.ndarray       # reduced constant load on the lateral coordinates: gravity and the preload of
+    #                             in_landing supports relaxed off the levitated axis (timoshenko.landing_support_preload)
     rotor_mass: float
     rotor_polar_inertia: float
     i_theta: int
@@ -146,7 +147,8 @@ def build_spec(scenario: Scenario, *, reduction=None) -> LandingSpec:
         node = fe.station_nodes[scenario.unbalance.station]
         unb = (cb.T[4 * node].copy(), cb.T[4 * node + 1].copy())
     amb_rows = [(cb.index(s, "y"), cb.index(s, "z")) for s in stations]
-    return LandingSpec(scenario, fe, cb, stations, n_lat, cb.M, cb.K, cb.C, cb.G, cb.gravity_load(),
+    f_const = cb.gravity_load() + cb.T.T @ landing_support_preload(fe)
+    return LandingSpec(scenario, fe, cb, stations, n_lat, cb.M, cb.K, cb.C, cb.G, f_const,
                        fe.mass, fe.polar_inertia, i_theta, i_axial, bearings, unb, amb_rows, names,
                        rotor_laws(scenario))
 

@@ -140,12 +140,14 @@ def static_support_loads(rotor_data: dict) -> dict[str, float]:
     acceleration is zero), which validate reads Table 2's force rows against."""
     from .reduction import full_model
     from .rotor import rotor_from_dict
-    from .timoshenko import assemble
+    from .timoshenko import assemble, landing_support_preload
 
     fe = assemble(rotor_from_dict(rotor_data))
     system = full_model(fe).with_supports()
-    u = np.linalg.solve(system.K, system.gravity_load())
-    return {s.station: float(-s.kzz * u[fe.dof(s.station, "z")]) for s in fe.rotor.supports}
+    # an in_landing support relaxed off the levitated axis (offset_z) pulls with -k (u - u0)
+    u = np.linalg.solve(system.K, system.gravity_load() + landing_support_preload(fe))
+    return {s.station: float(-s.kzz * (u[fe.dof(s.station, "z")] - s.offset_z) - s.kzy * (u[fe.dof(s.station, "y")] - s.offset_y))
+            for s in fe.rotor.supports}
 
 
 def nearest(freqs_hz, target_hz: float) -> float:

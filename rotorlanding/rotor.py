@@ -38,6 +38,9 @@ MAX_DIMENSION = 20.0
 #: stiffnesses (the rotor's own ~1e6-1e8 N/m) approaches double precision and its modes are lost
 MAX_SUPPORT_STIFFNESS = 1.0e13
 MAX_SUPPORT_DAMPING = 1.0e10
+# m: largest offset of an in_landing spring's rest point from the levitated axis (design reasoning: five
+# catcher clearances; a motor further off its rotor's axis would not be a coupling alignment)
+MAX_SUPPORT_OFFSET = 1.0e-3
 #: Pa: ultimate strength of the strongest structural steels (maraging steel grade 350: ~2.4 GPa).
 #: A solid disk, the least stressed rotating shape, reaches it at its centre at the rim speed
 #: v = sqrt(8 sigma / ((3 + nu) rho)) (Timoshenko & Goodier, rotating disks): 880 m/s in steel
@@ -140,6 +143,10 @@ class Support:
     cyz: float = 0.0
     czy: float = 0.0
     in_landing: bool = False  # also a spring-damper to ground in the landing model, relaxed on the levitated axis
+    # m: where an in_landing spring is relaxed, from the levitated axis: a motor whose axis is off the
+    # levitated one (e.g. aligned with the rotor resting on its catcher bearings, z = -clearance)
+    offset_y: float = 0.0
+    offset_z: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -378,6 +385,14 @@ def _rotor_from_dict(data: dict, source: str | None) -> Rotor:
                                  "(stiffer than any bearing or foundation x1000: beyond it the modal problem loses "
                                  "the rotor's own stiffness to rounding)")
         kw["in_landing"] = s.boolean("in_landing", False)
+        for key in ("offset_y", "offset_z"):
+            kw[key] = s.number(key, 0.0)
+            if abs(kw[key]) > MAX_SUPPORT_OFFSET:
+                raise InputError(s._field(key), kw[key], f"|value| must be <= {MAX_SUPPORT_OFFSET:g} m (five catcher "
+                                 "clearances: a motor axis that far off the levitated one is no coupling alignment)")
+            if kw[key] and not kw["in_landing"]:
+                raise InputError(s._field(key), kw[key], "must be 0 unless in_landing = true (it is where the landing's "
+                                 "spring is relaxed; modal analysis is linear about the levitated axis)")
         if kw["in_landing"] and kw["kyz"] != kw["kzy"]:
             # in the landing the support joins K before the Craig-Bampton reduction, whose solves assume
             # a symmetric K, and the energy ledger books 1/2 q^T K q: an unsymmetric (circulatory)

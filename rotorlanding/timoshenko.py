@@ -293,6 +293,19 @@ def support_matrices(fe: RotorFE, *, in_landing_only: bool = False) -> tuple[np.
     return ks, cs
 
 
+def landing_support_preload(fe: RotorFE) -> np.ndarray:
+    """Full-size constant load [N, N m] of the ``in_landing`` supports relaxed off the levitated axis: a
+    spring relaxed at u0 acts with -K_s (u - u0), whose constant part K_s u0 joins gravity (zero when every
+    offset is 0). u0 is the supports' ``offset_y`` / ``offset_z`` at their stations."""
+    f = np.zeros(fe.ndof)
+    for s in fe.rotor.supports:
+        if s.in_landing and (s.offset_y or s.offset_z):
+            iy, iz = fe.dof(s.station, "y"), fe.dof(s.station, "z")
+            f[iy] += s.kyy * s.offset_y + s.kyz * s.offset_z
+            f[iz] += s.kzy * s.offset_y + s.kzz * s.offset_z
+    return f
+
+
 def with_landing_supports(fe: RotorFE) -> RotorFE:
     """The rotor as the landing model sees it: the free rotor plus the supports marked
     ``in_landing`` (springs to ground relaxed on the levitated axis, so the AMBs' hold before the

@@ -1695,9 +1695,10 @@ def report_markdown(result: dict) -> str:
                     lines[-1] += (("" if js["all"] else " None found at the rig's ribbon damping passes it together with "
                                    "Fig. 39, Table 1's backward frequency and the calm landing (docs/calibration.md, session "
                                    "38, for lower damping: one rotor passes all on 8 drops and misses two on 32; session 39: "
-                                   "the rest of the landed chain within its bounds does not give it, and a motor coupling "
-                                   "of 1.5e6 N/m or more gives it by holding the DE off its catcher bearing, whose race "
-                                   "then does not reach rotor speed in the no-whirl landing).")
+                                   "the rest of the landed chain within its bounds does not give it; a motor coupling of "
+                                   "1.5e6 N/m or more does, with Fig. 39 and the calm landing on some rotors, but aligned "
+                                   "with the levitated rotor it holds the DE off its catcher bearing, and aligned with the "
+                                   "landed one it loses Table 1's backward whirl, 62-88 Hz where it whirls).")
                                   + f" Of {js['landed']} rotors "
                                   "whose worn-bearing landing whirls backward in Table 1's band, landed at the three speeds, "
                                   "with the ribbon variants and the no-whirl landing (`ribbon_landing_screen.py "

@@ -65,28 +65,74 @@ def _landing(k_c, *sets, damping=0.0):
     return replace(sc, rotor=replace(sc.rotor, mass_proportional_damping=damping)) if damping else sc
 
 
-@pytest.mark.parametrize("k_c", [0.0, 2.0e6])
-def test_rotor_at_rest_is_in_force_balance_with_the_coupling(k_c):
+@pytest.mark.parametrize("k_c, offset_z", [(0.0, 0.0), (2.0e6, 0.0), (2.0e6, -2.0e-4)])
+def test_rotor_at_rest_is_in_force_balance_with_the_coupling(k_c, offset_z):
     """A non-rotating drop settles; then the weight is carried by the two catcher contacts and the
-    coupling spring, k_c times the coupling hub's displacement from the levitated axis (vertical
-    force balance of the whole rotor, an independent check of the spring's sign and size)."""
-    sc = _landing(k_c, "operating.speed_rpm=0", "operating.t_end=0.4", "effects.windage=false", damping=40.0)
+    coupling spring, -k_c times the coupling hub's displacement from the spring's rest point (on the
+    levitated axis, or ``offset_z`` off it: a motor aligned with the rotor at rest on its catchers)
+    (vertical force balance of the whole rotor, an independent check of the spring's sign and size)."""
+    sc = _landing(k_c, "operating.speed_rpm=0", "operating.t_end=0.4", "effects.windage=false",
+                  f"rotor.supports.2.offset_z={offset_z}", damping=40.0)
     spec, t, q, v, info = simulate(sc, progress=False)
     assert info["complete"]
     series = evaluate(spec, t, q, v)
     node = spec.fe.station_nodes["coupling"]
     z_c = float(spec.cb.T[4 * node + 1] @ q[-1, :spec.n_lat])
     contacts = sum(series[f"{b.name}_contact_force_z_n"][-1] for b in spec.bearings)
-    coupling = -k_c * z_c
+    coupling = -k_c * (z_c - offset_z)
     weight = spec.rotor_mass * GRAVITY
     assert contacts + coupling == pytest.approx(weight, rel=2e-3)
-    if k_c:
+    if k_c and not offset_z:
         assert z_c < -1e-4            # the hub has dropped with the rotor ...
         assert coupling > 0.1 * weight  # ... and the spring carries a real share
+    if offset_z:
+        # relaxed near where the landed hub sits (one clearance low; the rest is the chain's deflection and the
+        # rotor's tilt): the spring is stretched by under a quarter of the hub's drop and carries little
+        assert abs(z_c - offset_z) < 0.25 * abs(z_c)
+        assert abs(coupling) < 0.15 * weight
 
 
-def test_energy_balance_with_the_coupling():
-    sc = _landing(4.0e6, "operating.t_end=0.25", "solver.output_period=5e-5")
+def test_support_offset_is_checked():
+    r = _rotor([{"station": "mid", "kyy": 2e6, "kzz": 2e6, "in_landing": True, "offset_z": -2e-4}])
+    assert (r.supports[0].offset_y, r.supports[0].offset_z) == (0.0, -2e-4)
+    assert _rotor([{"station": "mid", "kyy": 2e6}]).supports[0].offset_z == 0.0
+    with pytest.raises(InputError, match=r"rotor\.supports\[0\]\.offset_z.*unless in_landing"):
+        _rotor([{"station": "mid", "kyy": 2e6, "offset_z": -2e-4}])
+    with pytest.raises(InputError, match=r"rotor\.supports\[0\]\.offset_y.*<= 0\.001 m"):
+        _rotor([{"station": "mid", "kyy": 2e6, "in_landing": True, "offset_y": 2e-3}])
+
+
+def test_static_loads_with_a_relaxed_off_axis_support():
+    """Closed form: a spring relaxed exactly where the rotor sits on its other supports carries
+    nothing, so those supports carry what they carry without it; any other rest point shares the
+    weight, whose total the supports always carry (statics)."""
+    from rotorlanding.modefit import static_support_loads
+    from rotorlanding.reduction import full_model
+
+    ends = [{"station": "left", "kyy": 1e7, "kzz": 1e7}, {"station": "right", "kyy": 1e7, "kzz": 1e7}]
+    data = {"rotor": {"materials": {"steel": STEEL},
+                      "sections": [{"length": 0.5, "outer_diameter": 0.05, "material": "steel", "elements": 5}],
+                      "stations": {"left": 0.0, "mid": 0.25, "right": 0.5}, "supports": ends}}
+    fe = assemble(rotor_from_dict(data))
+    sys2 = full_model(fe).with_supports()
+    z_mid = float(np.linalg.solve(sys2.K, sys2.gravity_load())[fe.dof("mid", "z")])
+    two = static_support_loads(data)
+    weight = fe.mass * GRAVITY
+    for off, carries in ((z_mid, False), (0.0, True), (-3 * abs(z_mid), True)):
+        d = {"rotor": {**data["rotor"], "supports": [*ends, {"station": "mid", "kyy": 5e6, "kzz": 5e6, "in_landing": True,
+                                                               "offset_z": off}]}}
+        loads = static_support_loads(d)
+        assert sum(loads.values()) == pytest.approx(weight, rel=1e-9)
+        if carries:
+            assert abs(loads["mid"]) > 0.05 * weight
+        else:
+            assert loads["mid"] == pytest.approx(0.0, abs=1e-9 * weight)
+            assert loads["left"] == pytest.approx(two["left"], rel=1e-9)
+
+
+@pytest.mark.parametrize("offset_z", [0.0, -2.0e-4])
+def test_energy_balance_with_the_coupling(offset_z):
+    sc = _landing(4.0e6, "operating.t_end=0.25", "solver.output_period=5e-5", f"rotor.supports.2.offset_z={offset_z}")
     spec, t, q, v, info = simulate(sc, progress=False)
     assert info["complete"]
     e = summarize(spec, t, evaluate(spec, t, q, v))["energy"]
