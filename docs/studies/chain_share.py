@@ -18,7 +18,10 @@ whirl by >= 10 %, the paper's "greatly influences"):
    ``--set rotor.supports.2.kyy=K --set rotor.supports.2.kzz=K``; results in
    ``docs/studies/ribbon_neighbourhood/coupling/``.
 
-    python docs/studies/chain_share.py        (a few seconds; prints the two tables)
+3. **What the coupling does to the backward landed mode** that Table 1's worn landing follows (its backward whirl
+   runs at about 0.7 of the first backward landed mode at 7000 rpm; session 37).
+
+    python docs/studies/chain_share.py        (a few seconds; prints the three tables)
 """
 
 from __future__ import annotations
@@ -79,6 +82,24 @@ def main() -> int:
         lift = k * 2.0e-4
         print(f"  {k:.2g} N/m: coupling lift {lift:.0f} N, DE sleeve unloaded by {lever * lift:.0f} N "
               f"(lever {lever:.3f}) of its {w_de:.0f} N static load")
+
+    print("3. The coupling's stiffness and the landed modes Table 1 and Fig. 39 follow (7000 rpm, chain 3.6e7 N/m): the")
+    print("   first backward landed mode above 30 Hz (Table 1's worn landing whirls backward at about 0.7 of it) and the")
+    print("   first forward one, on two five-check children of 11:771 (docs/studies/ribbon_neighbourhood/children.json)")
+    import json
+
+    import rotor_rise_screen as rrs
+    from rotorlanding.modefit import whirl_modes
+
+    children = {f"{r['seed']}:{r['sample']}": r for r in
+                json.loads((ROOT / "docs" / "studies" / "ribbon_neighbourhood" / "children.json").read_text())["rows"]}
+    for name in ("11771:186", "11771:12"):
+        d = rrs.rotor_data(base, children[name]["vals"])
+        for k in (0.0, 5e5, 1e6, 1.5e6, 2.5e6):
+            dk = rotor_with(d, {"rotor.supports.2.kyy": k, "rotor.supports.2.kzz": k}, rib.K_CHAIN)
+            b = [f for f in whirl_modes(dk, [7000.0], "backward")[0] if f > 30.0]
+            f = [f for f in whirl_modes(dk, [7000.0], "forward")[0] if f > 15.0]
+            print(f"  {name} coupling {k:.2g} N/m: backward {b[0]:.1f} Hz, forward {f[0]:.1f} Hz")
     return 0
 
 
