@@ -146,8 +146,8 @@ def static_support_loads(rotor_data: dict) -> dict[str, float]:
     system = full_model(fe).with_supports()
     # an in_landing support relaxed off the levitated axis (offset_z) pulls with -k (u - u0)
     u = np.linalg.solve(system.K, system.gravity_load() + landing_support_preload(fe))
-    return {s.station: float(-s.kzz * (u[fe.dof(s.station, "z")] - s.offset_z) - s.kzy * (u[fe.dof(s.station, "y")] - s.offset_y))
-            for s in fe.rotor.supports}
+    return {s.station: float(-s.kzz * (u[fe.dof(s.station, "z")] - s.offset_z)
+                             - s.kzy * (u[fe.dof(s.station, "y")] - s.offset_y)) for s in fe.rotor.supports}
 
 
 def nearest(freqs_hz, target_hz: float) -> float:

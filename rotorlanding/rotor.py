@@ -143,6 +143,7 @@ class Support:
     cyz: float = 0.0
     czy: float = 0.0
     in_landing: bool = False  # also a spring-damper to ground in the landing model, relaxed on the levitated axis
+    #                          (or at offset_y / offset_z below)
     # m: where an in_landing spring is relaxed, from the levitated axis: a motor whose axis is off the
     # levitated one (e.g. aligned with the rotor resting on its catcher bearings, z = -clearance)
     offset_y: float = 0.0

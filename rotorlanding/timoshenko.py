@@ -309,7 +309,8 @@ def landing_support_preload(fe: RotorFE) -> np.ndarray:
 def with_landing_supports(fe: RotorFE) -> RotorFE:
     """The rotor as the landing model sees it: the free rotor plus the supports marked
     ``in_landing`` (springs to ground relaxed on the levitated axis, so the AMBs' hold before the
-    drop is unchanged). Without such supports, ``fe`` itself."""
+    drop is unchanged; one relaxed off it adds the constant load :func:`landing_support_preload`, which
+    the landing adds to gravity). Without such supports, ``fe`` itself."""
     ks, cs = support_matrices(fe, in_landing_only=True)
     if not (ks.any() or cs.any()):  # (also when they are included already: then the matrices are zero)
         return fe
