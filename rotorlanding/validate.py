@@ -1692,13 +1692,12 @@ def report_markdown(result: dict) -> str:
                           + ". So on the paper's equations rotors within the bounds pass this check."]
                 js = joint_screen_summary()
                 if js and js["landed"]:
+                    # the studies' numbers live in docs/calibration.md; the report points there, so they are not
+                    # restated (and left to go stale) here
                     lines[-1] += (("" if js["all"] else " None found at the rig's ribbon damping passes it together with "
-                                   "Fig. 39, Table 1's backward frequency and the calm landing (docs/calibration.md, session "
-                                   "38, for lower damping: one rotor passes all on 8 drops and misses two on 32; session 39: "
-                                   "the rest of the landed chain within its bounds does not give it; a motor coupling of "
-                                   "1.5e6 N/m or more does, with Fig. 39 and the calm landing on some rotors, but aligned "
-                                   "with the levitated rotor it holds the DE off its catcher bearing, and aligned with the "
-                                   "landed one it loses Table 1's backward whirl, 62-88 Hz where it whirls).")
+                                   "Fig. 39, Table 1's backward frequency and the calm landing; lower ribbon damping, the "
+                                   "rest of the landed chain and a stiff motor coupling were each tried and none keeps them "
+                                   "all (docs/calibration.md, sessions 38-39).")
                                   + f" Of {js['landed']} rotors "
                                   "whose worn-bearing landing whirls backward in Table 1's band, landed at the three speeds, "
                                   "with the ribbon variants and the no-whirl landing (`ribbon_landing_screen.py "
