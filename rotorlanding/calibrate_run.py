@@ -394,6 +394,12 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
             break
     # converged designs first, then unchecked, then unconverged; a checked design's score is the
     # worse of the two steps
+    return _rank_and_write(rows, space_path, sp, out)
+
+
+def _rank_and_write(rows: list[dict], space_path, sp: dict, out: Path) -> list[dict]:
+    """Rank the designs (converged first, then unchecked, then unconverged; a checked design's score
+    is the worse of the two steps), mark those within the noise of the best, and write the table."""
     rank = {True: 0, None: 1, False: 2}
     rows.sort(key=lambda r: (rank[r["converged"]], max(r["score"], r["score_half_step"] or 0.0)))
     noise = within_noise(rows)
@@ -410,7 +416,79 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
     w.writerows(rows)
     atomic_write_text(out / "calibration.csv", buf.getvalue())
     atomic_write_text(out / "calibration.json", json.dumps(
-        {"space": str(space_path), "ensemble": sp["ensemble"], "cases": list(cases), "noise_z": NOISE_Z,
+        {"space": str(space_path), "ensemble": sp["ensemble"], "cases": list(sp["cases"]), "noise_z": NOISE_Z,
          "within_noise_span": noise_span(rows, list(sp["designs"][0])),
          "designs": rows}, indent=2, default=float))
     return rows
+
+
+def calibrate_from_run(space_path, run_path, out_dir) -> list[dict]:
+    """The fit of ``space_path`` read off a stored run (``run_path``: a ``calibration.json``) whose space
+    landed the same designs on more cases, without a landing: each design's score is the sum of its
+    stored parts over this space's cases, its error their quadrature, then ranked and written as
+    ``calibrate`` would. A case's landings do not depend on which other cases a fit scores (each is its
+    own run of the same scenario, design and drops), so this is the fit the space would run, to the
+    bit on the same install. It is how the held-out fits (two of the three Fig. 39 speeds) follow
+    from the three-speed fit. Refused in one line unless the two spaces draw the same designs with
+    the same fixed values, drops, t_end and score rule, this space's cases are among the run's, and
+    neither checks the step (verify_top = 0: a half-step check lands again)."""
+    sp = load_space(space_path)
+    run_path = Path(run_path)
+    try:
+        run = json.loads(run_path.read_text())
+        src = Path(run["space"])
+        if not src.is_absolute():  # as calibrate was given it: from where it ran, else the checkout's root
+            from .validate import project_root
+
+            src = next((b / src for b in (Path.cwd(), project_root()) if (b / src).is_file()), src)
+        rsp = load_space(src)
+    except (OSError, ValueError, KeyError, InputError) as e:
+        raise InputError("--from-run", str(run_path), f"a calibration.json whose space file can be read ({e})")
+    if not set(sp["cases"]) <= set(run["cases"]):
+        raise InputError("--from-run", str(run_path), f"a run that scored every case of {Path(space_path).name} "
+                         f"({', '.join(sp['cases'])}); it scored {', '.join(run['cases'])}")
+    for key in ("designs", "fixed", "ensemble", "t_end", "score_force", "verify_top"):
+        if sp[key] != rsp[key]:
+            raise InputError("--from-run", str(run_path), f"a run of the same {key} as {Path(space_path).name} "
+                             f"(its space {src.name} differs)")
+    if sp["verify_top"]:
+        raise InputError("verify_top", sp["verify_top"], "0 for a fit read off a stored run (a step check lands again)")
+    fitted = set(sp["cases"])
+    rows = []
+    for r in run["designs"]:
+        parts = stored_parts(r, fitted)
+        dropped = [k for k in r if k.startswith("err_") and _part_case(k[4:].removesuffix("_se")) not in fitted]
+        row = {k: v for k, v in r.items() if k not in dropped}
+        failed = [r[f"{c}_failed"] for c in sp["cases"] if f"{c}_failed" in r]
+        row.update({"score": _total(parts), "score_se": _quadrature(parts), "within_noise_of_best": None,
+                    "failed_landings": sum(failed) if len(failed) == len(sp["cases"]) else r.get("failed_landings")})
+        rows.append(row)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    rows.sort(key=lambda r: r["design"])
+    return _rank_and_write(rows, space_path, sp, out)
+
+
+def stored_parts(row: dict, cases) -> dict:
+    """A stored design row's score parts that belong to ``cases``, each as (value, standard error): a
+    case's own part and, for an ensemble, its DE share (the ``err_<part>`` and ``err_<part>_se``
+    columns ``calibrate`` writes). ``_total`` and ``_quadrature`` of them are that fit's score and error."""
+    return {k[4:]: (v, row.get(f"{k}_se")) for k, v in row.items()
+            if k.startswith("err_") and not k.endswith("_se") and _part_case(k[4:]) in set(cases)}
+
+
+def stored_score(row: dict, cases) -> tuple[float, float | None]:
+    """The score of a fit on ``cases`` only, from a stored row's parts, and its standard error."""
+    parts = stored_parts(row, cases)
+    return _total(parts), _quadrature(parts)
+
+
+def _part_case(part: str) -> str:
+    """The case a score part belongs to (``score_parts``' names): fw7000 and fw7000_de -> fw7000, force
+    -> fw7000 (Table 2's force is the 7000 rpm landing's), bw_freq / bw_share -> bw, bw015_whirls -> bw015."""
+    if part == "force":
+        return "fw7000"
+    for c in sorted(CASES, key=len, reverse=True):
+        if part == c or part.startswith(c + "_"):
+            return c
+    return part

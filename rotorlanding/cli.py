@@ -384,7 +384,12 @@ def cmd_calibrate(args) -> int:
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
     check_out_dir(args.out, "--out")  # before the designs are landed, not after
-    rows = calibrate(args.space, args.out, workers=args.workers)
+    if args.from_run:
+        from .calibrate_run import calibrate_from_run
+
+        rows = calibrate_from_run(args.space, args.from_run, args.out)
+    else:
+        rows = calibrate(args.space, args.out, workers=args.workers)
     failed = sum(1 for r in rows if r.get("failed_landings"))
     if failed == len(rows):
         print(f"rotorlanding: every one of the {len(rows)} designs had a landing that failed "
@@ -549,6 +554,9 @@ def build_parser() -> argparse.ArgumentParser:
     ca.add_argument("space", help="space TOML: samples, seed, t_end, [ranges]")
     ca.add_argument("--out", default="calibration")
     ca.add_argument("--workers", type=int, default=2)
+    ca.add_argument("--from-run", default=None, metavar="RUN.json",
+                    help="read the fit off a stored run (calibration.json) that landed the same designs on "
+                         "more cases, without landing (e.g. a held-out fit from the three-speed fit)")
     ca.set_defaults(func=cmd_calibrate)
 
     fm = sub.add_parser("fit-modes", help="fit rotor geometry so that a landed mode matches measured whirl "

@@ -420,3 +420,62 @@ def test_a_fit_records_table2s_de_numbers_per_case_unscored(tmp_path, monkeypatc
         assert "err_force" not in r
     # same frequency and share on both designs: equal scores although their forces differ
     assert rows[0]["score"] == rows[1]["score"]
+
+
+def test_a_fit_read_off_a_stored_run_is_the_fit_the_space_would_run(tmp_path, monkeypatch):
+    """``calibrate --from-run``: a space that scores two of the three Fig. 39 speeds of a stored
+    three-speed run's designs gets, without landing, the table its own run gives (the held-out fits,
+    session 40): the same order, scores, errors and noise set; mismatched spaces are refused."""
+    from rotorlanding import calibrate_run as cal
+    from rotorlanding.errors import InputError
+
+    def fake_run_all(jobs, workers):
+        out = {}
+        for i, case, *_ in jobs:
+            c = case.split("#")[0]
+            f = {"fw3000": 40.0 + 3 * i, "fw7000": 70.0 - 2 * i, "fw10000": 77.0 + ((i * 7) % 5)}[c]
+            fwd = 8 - (i + len(c)) % 3
+            out.setdefault(i, {})[c] = {"direction": "forward", "frequency_hz": f, "fraction": 1.0,
+                                        "de": {"counts": {"forward": fwd, "none": 8 - fwd}, "direction": "forward",
+                                               "frequency_hz": f, "frequency_se_hz": 0.5 + 0.1 * i}}
+        return out
+
+    monkeypatch.setattr(cal, "_run_all", fake_run_all)
+    head = 'samples = 6\nseed = 3\nensemble = 8\nscore_force = false\n'
+    rng = '[ranges]\n"rotor.disks.4.outer_diameter" = {min = 0.40, max = 0.49}\n'
+    (tmp_path / "all.toml").write_text(head + 'cases = ["fw3000", "fw7000", "fw10000"]\n' + rng)
+    (tmp_path / "two.toml").write_text(head + 'cases = ["fw7000", "fw10000"]\n' + rng)
+    cal.calibrate(tmp_path / "all.toml", tmp_path / "all", workers=1)
+    ran = cal.calibrate(tmp_path / "two.toml", tmp_path / "two", workers=1)
+    read = cal.calibrate_from_run(tmp_path / "two.toml", tmp_path / "all" / "calibration.json", tmp_path / "read")
+    keys = ("design", "score", "score_se", "within_noise_of_best", "err_fw7000", "err_fw10000_de")
+    assert [tuple(r[k] for k in keys) for r in read] == [tuple(r[k] for k in keys) for r in ran]
+    assert not any(k.startswith("err_fw3000") for k in read[0])       # not part of this fit's score
+    assert read[0]["fw3000_de_hz"] is not None                         # the held-out speed's landing, as data
+    assert json.loads((tmp_path / "read" / "calibration.json").read_text())["cases"] == ["fw7000", "fw10000"]
+    # another draw of designs, or a case the run did not land, is refused in one line
+    (tmp_path / "seed.toml").write_text(head.replace("seed = 3", "seed = 4") + 'cases = ["fw7000"]\n' + rng)
+    with pytest.raises(InputError, match="designs"):
+        cal.calibrate_from_run(tmp_path / "seed.toml", tmp_path / "all" / "calibration.json", tmp_path / "x")
+    (tmp_path / "bw.toml").write_text(head + 'cases = ["bw"]\n' + rng)
+    with pytest.raises(InputError, match="every case"):
+        cal.calibrate_from_run(tmp_path / "bw.toml", tmp_path / "all" / "calibration.json", tmp_path / "x")
+    assert main(["calibrate", str(tmp_path / "bw.toml"), "--from-run", str(tmp_path / "all" / "calibration.json"),
+                 "--out", str(tmp_path / "y")]) == 2
+
+
+@pytest.mark.parametrize("rpm", [3000, 7000, 10000])
+def test_the_stored_heldout_fits_are_the_stored_rotor_fit_read_on_two_speeds(tmp_path, rpm):
+    """The held-out fits validate lands (scenarios/calibration/holdout/without_<rpm>rpm/) are the rotor
+    fit's stored run (docs/studies/heldout_span/fit/) scored on the other two speeds: read off it with
+    ``calibrate_from_run``, the same designs in the same order with the same scores (session 40: the
+    three held-out runs, 4608 landings, agreed to the bit with the three-speed run's parts)."""
+    from rotorlanding.calibrate_run import calibrate_from_run
+
+    root = Path(__file__).resolve().parents[1]
+    read = calibrate_from_run(root / "scenarios" / "calibration" / "holdout" / f"without_{rpm}rpm_landings.toml",
+                              root / "docs" / "studies" / "heldout_span" / "fit" / "calibration.json", tmp_path)
+    stored = json.loads((root / "scenarios" / "calibration" / "holdout" / f"without_{rpm}rpm" /
+                         "calibration.json").read_text())["designs"]
+    assert [(r["design"], r["score"], r["within_noise_of_best"]) for r in read] == \
+        [(r["design"], r["score"], r["within_noise_of_best"]) for r in stored]

@@ -25,14 +25,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
 
-from rotorlanding.calibrate_run import NOISE_Z, calibrate, within_noise  # noqa: E402
+from rotorlanding.calibrate_run import NOISE_Z, calibrate, stored_score, within_noise  # noqa: E402
 from rotorlanding.safeio import atomic_write_text  # noqa: E402
 from rotorlanding.validate import (  # noqa: E402
     HELDOUT_BAND,
@@ -50,11 +49,9 @@ KEYS = ("rotor.sections.3.outer_diameter", "rotor.disks.4.outer_diameter")
 
 
 def sub_score(row: dict, cases: list[str]) -> tuple[float, float | None]:
-    """The score of a fit on ``cases`` only, from the full fit's parts, and its standard error."""
-    parts = [p for c in cases for p in (c, c + "_de")]
-    ses = [row.get(f"err_{p}_se") for p in parts]
-    total = sum(float(row[f"err_{p}"]) for p in parts)
-    return total, (None if any(s is None for s in ses) else math.sqrt(sum(float(s) ** 2 for s in ses)))
+    """The score of a fit on ``cases`` only, from the full fit's parts, and its standard error
+    (``calibrate_run.stored_score``, which ``rotorlanding calibrate --from-run`` ranks by)."""
+    return stored_score(row, cases)
 
 
 def on_bound(r: dict, bounds: dict, ranges: dict | None = None) -> bool:
