@@ -392,8 +392,6 @@ def calibrate(space_path, out_dir, *, workers: int = 2) -> list[dict]:
                 r["bw_onset_s_half_step"] = half[r["design"]]["bw"].get("onset_s")
         if any(r["converged"] for r in top):
             break
-    # converged designs first, then unchecked, then unconverged; a checked design's score is the
-    # worse of the two steps
     return _rank_and_write(rows, space_path, sp, out)
 
 
@@ -457,8 +455,8 @@ def calibrate_from_run(space_path, run_path, out_dir) -> list[dict]:
     rows = []
     for r in run["designs"]:
         parts = stored_parts(r, fitted)
-        dropped = [k for k in r if k.startswith("err_") and _part_case(k[4:].removesuffix("_se")) not in fitted]
-        row = {k: v for k, v in r.items() if k not in dropped}
+        # the other cases' parts are no part of this score; their landings' columns stay, as data
+        row = {k: v for k, v in r.items() if not k.startswith("err_") or _part_case(k[4:].removesuffix("_se")) in fitted}
         failed = [r[f"{c}_failed"] for c in sp["cases"] if f"{c}_failed" in r]
         row.update({"score": _total(parts), "score_se": _quadrature(parts), "within_noise_of_best": None,
                     "failed_landings": sum(failed) if len(failed) == len(sp["cases"]) else r.get("failed_landings")})
@@ -473,8 +471,9 @@ def stored_parts(row: dict, cases) -> dict:
     """A stored design row's score parts that belong to ``cases``, each as (value, standard error): a
     case's own part and, for an ensemble, its DE share (the ``err_<part>`` and ``err_<part>_se``
     columns ``calibrate`` writes). ``_total`` and ``_quadrature`` of them are that fit's score and error."""
+    cases = set(cases)
     return {k[4:]: (v, row.get(f"{k}_se")) for k, v in row.items()
-            if k.startswith("err_") and not k.endswith("_se") and _part_case(k[4:]) in set(cases)}
+            if k.startswith("err_") and not k.endswith("_se") and _part_case(k[4:]) in cases}
 
 
 def stored_score(row: dict, cases) -> tuple[float, float | None]:
