@@ -388,7 +388,8 @@ def test_a_tied_unknown_is_one_rig_row_that_fails_when_the_rig_breaks_the_tie(tm
 def test_screen_sleeve_loads_are_the_statics_of_two_supports():
     """docs/studies/rotor_rise_screen.py's static sleeve loads (session 32: Table 1's onset follows the
     DE's) against the lever rule by hand: a uniform 1 m shaft on sleeves at 0.2 and 0.8 m with a 10 kg
-    disk overhung at 1.0 m; and the rig rotor's loads add up to its weight."""
+    disk overhung at 1.0 m; and the rig rotor's support loads add up to its weight: the sleeves' and
+    the motor coupling's, a landed support since session 40 (1e5 N/m), which takes its share."""
     import importlib.util
 
     spec = importlib.util.spec_from_file_location("rotor_rise_screen", ROOT / "docs" / "studies" / "rotor_rise_screen.py")
@@ -407,5 +408,10 @@ def test_screen_sleeve_loads_are_the_statics_of_two_supports():
     assert de_s == pytest.approx(de, rel=1e-12)
     assert nde == pytest.approx((shaft + 10.0) * g - de, rel=1e-12)
     rig = load_toml(ROOT / "scenarios" / "rig_rotor.toml")
+    from rotorlanding.modefit import static_support_loads
     from rotorlanding.rotor import rotor_from_dict
-    assert sum(rs.sleeve_loads(rig)) == pytest.approx(rotor_from_dict(rig).mass * g, rel=1e-12)
+    loads = static_support_loads(rig)
+    assert set(loads) == {"NDE_sleeve", "DE_sleeve", "coupling"}
+    assert rs.sleeve_loads(rig) == (loads["NDE_sleeve"], loads["DE_sleeve"])
+    assert sum(loads.values()) == pytest.approx(rotor_from_dict(rig).mass * g, rel=1e-12)
+    assert 0.0 < loads["coupling"] < 0.05 * rotor_from_dict(rig).mass * g  # a soft coupling: a small share

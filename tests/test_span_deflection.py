@@ -13,8 +13,19 @@ from rotorlanding.scenario import load_scenario
 ROOT = Path(__file__).resolve().parents[1]
 
 
+FREE = ["rotor.supports.2.kyy=0.0", "rotor.supports.2.kzz=0.0"]  # the motor coupling laterally free
+
+
 @pytest.fixture(scope="module")
 def spec():
+    """The rig's landing model with the motor coupling laterally free (the rig until session 40): no
+    support in K, so the constraint modes hold the rotor's rigid-body motions."""
+    return build_spec(load_scenario(ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml", FREE))
+
+
+@pytest.fixture(scope="module")
+def landed_spec():
+    """The rig's landing model as it is: the 1e5 N/m motor coupling in K (since session 40)."""
     return build_spec(load_scenario(ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"))
 
 
@@ -28,8 +39,8 @@ def _rigid(spec, a, b, c, d):
 
 
 def test_a_rigid_body_motion_is_rebuilt_exactly_at_every_node(spec):
-    """The constraint modes of a free rotor hold its rigid-body motions (the rig's landing model has
-    no support in K: its coupling's lateral stiffness is 0; with a stiff coupling this would not hold): boundary values of a
+    """The constraint modes of a free rotor hold its rigid-body motions (the landing model with no
+    support in K: the coupling laterally free; with the rig's coupling see the next test): boundary values of a
     translation plus a tilt give that straight line at every node, including the stations off the
     reduction's boundary (AMBs, sensors, disks) and the largest one at the rotor's far end."""
     a, b, c, d = 1e-4, 3e-4, -2e-4, 1e-4
@@ -40,6 +51,28 @@ def test_a_rigid_body_motion_is_rebuilt_exactly_at_every_node(spec):
     line = np.hypot(a + b * x, c + d * x)
     assert r["peak_m"] == pytest.approx(line.max(), rel=1e-9)
     assert r["peak_x_m"] == pytest.approx(x[int(np.argmax(line))])
+
+
+def test_with_the_coupling_in_k_a_boundary_motion_rebuilds_its_static_shape(landed_spec, spec):
+    """With the motor coupling in K (the rig since session 40) a constraint mode is the static shape
+    of its boundary values, not a straight line: the rebuilt displacement loads no interior DOF
+    (K u = 0 there, checked on the landing model's own full K), and the coupling's spring bends the
+    overhang off the line that the free rotor keeps."""
+    s = landed_spec
+    a, b, c, d = 1e-4, 3e-4, -2e-4, 1e-4
+    q = _rigid(s, a, b, c, d)
+    u = s.cb.T @ q[:s.n_lat]
+    boundary = {s.fe.dof(st, dof) for st in s.stations for dof in ("y", "z")}
+    interior = [i for i in range(s.fe.ndof) if i not in boundary]
+    f = s.fe.K @ u
+    assert np.abs(f[interior]).max() < 1e-9 * np.abs(f[sorted(boundary)]).max()
+    n = s.fe.station_nodes["coupling"]
+    x = s.fe.nodes[n]
+    line = np.hypot(a + b * x, c + d * x)
+    bent = span_deflection(s, q)["station_peak_m"]["coupling"]
+    free = span_deflection(spec, _rigid(spec, a, b, c, d))["station_peak_m"]["coupling"]
+    assert free == pytest.approx(line, rel=1e-9)
+    assert abs(bent - line) > 1e-3 * line
 
 
 def test_the_peak_is_over_time_and_a_bending_mode_moves_the_span_not_the_sleeves(spec):
