@@ -1202,6 +1202,80 @@ def joint_screen_summary(files=None) -> dict | None:
             "one_short_ribbon": sum(fails[k] == ["ribbon"] for k in short)}
 
 
+#: the session-41 alignment study's stored results (docs/studies/coupling_alignment.py), read, not re-run
+ALIGNMENT_FILE = "docs/studies/coupling_alignment/scan.jsonl"
+
+
+def alignment_summary(path=None, rotor_file=None) -> dict | None:
+    """What the stored alignment study found: Table 1's switch (the backward landing at mu_rad 0.3 and 0.15) and
+    the other landings with the motor's axis moved over its bound (``rotor.supports.2.offset_z``), each judged by
+    the switch's own rule (``CLASS_SHARE`` of the drops): {"k": the coupling's stiffness [N/m], "switch": [{"offset_z_m",
+    "backward", "calm", "n", "frequency_hz", "pass"}], "other": [{"case", "offset_z_m", "de_counts", "n",
+    "frequency_hz"}]}, offsets descending. None when the file is absent or torn, or was landed on another coupling
+    stiffness than the rig's (a stale study is not reported as the rig's)."""
+    from .config import load_toml
+
+    try:
+        recs = _read_jsonl(Path(path) if path is not None else project_root() / ALIGNMENT_FILE)
+        rotor = load_toml(Path(rotor_file) if rotor_file is not None else project_root() / "scenarios" / "rig_rotor.toml")
+        k_rig = next(float(s["kyy"]) for s in rotor["rotor"]["supports"] if s["station"] == "coupling")
+        if not recs or any(float(r["coupling_n_per_m"]) != k_rig for r in recs):
+            return None
+        bw = {r["offset_z_m"]: r for r in recs if r["case"] == "backward_whirl_landing" and r["mu_rad"] == 0.3}
+        calm = {r["offset_z_m"]: r for r in recs if r["case"] == "backward_whirl_landing" and r["mu_rad"] == 0.15}
+        switch = []
+        for oz in sorted(set(bw) & set(calm), reverse=True):
+            n = int(bw[oz]["drops"])
+            b_n, c_n = int(bw[oz]["de_counts"].get("backward", 0)), int(calm[oz]["de_counts"].get("none", 0))
+            switch.append({"offset_z_m": oz, "backward": b_n, "calm": c_n, "n": n, "frequency_hz": bw[oz]["de_frequency_hz"],
+                           "pass": b_n >= class_need(n) and c_n >= class_need(int(calm[oz]["drops"]))})
+        other = [{"case": r["case"], "offset_z_m": r["offset_z_m"], "de_counts": r["de_counts"], "n": int(r["drops"]),
+                  "frequency_hz": r["de_frequency_hz"]}
+                 for r in sorted(recs, key=lambda r: -r["offset_z_m"]) if r["case"] != "backward_whirl_landing"]
+    except (OSError, ValueError, KeyError, TypeError, StopIteration):
+        return None
+    return {"k": k_rig, "switch": switch, "other": other}
+
+
+def alignment_lines(al: dict | None) -> list[str]:
+    """The report's paragraph on the alignment study (``alignment_summary``); nothing without one."""
+    if not al or not al["switch"]:
+        return []
+    held = [s["offset_z_m"] for s in al["switch"] if s["pass"]]
+    t1 = paper()["table1"]
+    f_exp = t1["experimental"]["frequency_hz"]
+    f_band = band(t1["simulated"]["frequency_hz"], f_exp)
+
+    def freq(f):
+        return "" if not f else f" ({f:.1f} Hz" + ("" if abs(f - f_exp) <= f_band else ", outside Table 1's band") + ")"
+
+    text = (f"Set, not fitted, and what the switch hangs on: the motor coupling ({al['k']:.3g} N/m laterally, about the "
+            "softest catalogued bellows coupling) with the motor's axis on the levitated one (`rotor.supports.2.offset_z` "
+            "= 0). Moved over its alignment bound (`docs/studies/coupling_alignment.py`, stored, not re-run here; "
+            "docs/calibration.md, session 41), Table 1's switch (backward at mu_rad 0.3 / calm at 0.15, DE journal, by "
+            "this check's rule): "
+            + "; ".join(f"{s['offset_z_m'] * 1e3:+.2f} mm {s['backward']} / {s['calm']} of {s['n']}"
+                        + freq(s["frequency_hz"]) + (" PASS" if s["pass"] else " FAIL")
+                        for s in al["switch"]))
+    lost = [s["offset_z_m"] for s in al["switch"] if not s["pass"]]
+    if held:
+        text += (f". It holds with the motor from {min(held) * 1e3:+.2f} to {max(held) * 1e3:+.2f} mm of the levitated "
+                 "axis" + (" and fails at " + ", ".join(f"{x * 1e3:+.2f}" for x in lost) + " mm" if lost else ""))
+    fwd = [o for o in al["other"] if o["case"].startswith("forward")]
+    calm = [o for o in al["other"] if o["case"] == "no_whirl_landing"]
+    parts = []
+    if fwd:
+        parts.append(f"the forward landings' DE journal ({', '.join(sorted({o['case'] for o in fwd}))}) whirls forward "
+                     f"in {sum(o['de_counts'].get('forward', 0) for o in fwd)} of {sum(o['n'] for o in fwd)} drops")
+    if calm:
+        parts.append(f"the no-whirl landing is calm in {sum(o['de_counts'].get('none', 0) for o in calm)} of "
+                     f"{sum(o['n'] for o in calm)}")
+    if parts:
+        offs = sorted({o["offset_z_m"] for o in al["other"]}, reverse=True)
+        text += "; at " + ", ".join(f"{x * 1e3:+.2f}" for x in offs) + " mm " + " and ".join(parts)
+    return ["", text + "."]
+
+
 def ribbon_mode_changes(rm: dict, landed: dict) -> dict:
     """Ribbon variants whose landed DE whirl lies nearer another landed forward mode than the one
     the base whirl locks to: {factor: (landed Hz, that mode's Hz, the matched mode's Hz)}. ``landed``:
@@ -1574,6 +1648,8 @@ def report_markdown(result: dict) -> str:
             + ("" if c["se"] is None else f" ({c['se']:.2g})")
         lines.append(f"| {c['check']} | {c['rule']} | {_fmt(c.get('ours'))} | {m} | {_verdict(c)} | "
                      f"{c.get('provenance', 'predicted')} |")
+    if not result.get("rig_overlay"):
+        lines += alignment_lines(alignment_summary())
     held = [c for c in ev["checks"] if c["group"] == "held-out"]
     # the held-out study's drops per speed (its fit's ensemble), as the study recorded them
     drops = next((c["robust"]["drops"] for c in held if (c.get("robust") or {}).get("drops")), None)

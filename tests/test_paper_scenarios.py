@@ -806,6 +806,56 @@ def test_joint_screen_summary_counts_the_funnels(tmp_path):
     assert joint_screen_summary([fa, tmp_path / "absent.jsonl"]) is None
 
 
+def test_alignment_summary_judges_the_switch_per_offset_and_drops_a_stale_study(tmp_path):
+    """validate.alignment_summary: per motor offset, Table 1's switch by the switch check's own rule (14 of 16
+    backward at mu_rad 0.3 and calm at 0.15), offsets descending, a frequency outside Table 1's band said so in the
+    report's paragraph; a study landed on another coupling stiffness than the rotor file's, or torn, gives None."""
+    import json
+
+    from rotorlanding.validate import alignment_lines, alignment_summary
+
+    def rec(case, oz, mu, counts, f=None, k=1.0e5, n=16):
+        return {"case": case, "coupling_n_per_m": k, "offset_z_m": oz, "mu_rad": mu, "drops": n, "de_counts": counts,
+                "de_frequency_hz": f, "de_frequency_se_hz": None, "median_onset_s": None}
+
+    recs = [rec("backward_whirl_landing", 0.0, 0.3, {"backward": 14, "none": 2}, 49.5),
+            rec("backward_whirl_landing", 0.0, 0.15, {"none": 16}),
+            rec("backward_whirl_landing", -2e-4, 0.3, {"backward": 13, "none": 3}, 50.0),
+            rec("backward_whirl_landing", -2e-4, 0.15, {"none": 16}),
+            rec("backward_whirl_landing", 5e-5, 0.3, {"backward": 16}, 60.0),
+            rec("backward_whirl_landing", 5e-5, 0.15, {"none": 14, "backward": 2}),
+            rec("forward_whirl_landing", -2e-4, None, {"forward": 7, "none": 1}, 65.0, n=8),
+            rec("no_whirl_landing", -2e-4, None, {"none": 8}, n=8)]
+    scan, rotor = tmp_path / "scan.jsonl", tmp_path / "rotor.toml"
+    scan.write_text("".join(json.dumps(r) + "\n" for r in recs))
+    rotor.write_text('[[rotor.supports]]\nstation = "DE_sleeve"\nkyy = 3.6e7\n'
+                     '[[rotor.supports]]\nstation = "coupling"\nkyy = 1.0e5\n')
+    al = alignment_summary(scan, rotor)
+    assert [s["offset_z_m"] for s in al["switch"]] == [5e-5, 0.0, -2e-4]
+    assert [s["pass"] for s in al["switch"]] == [True, True, False]
+    assert [(s["backward"], s["calm"]) for s in al["switch"]] == [(16, 14), (14, 16), (13, 16)]
+    text = alignment_lines(al)[1]
+    assert "+0.05 mm 16 / 14 of 16 (60.0 Hz, outside Table 1's band) PASS" in text
+    assert "+0.00 mm 14 / 16 of 16 (49.5 Hz) PASS" in text and "-0.20 mm 13 / 16 of 16 (50.0 Hz) FAIL" in text
+    assert "fails at -0.20 mm" in text and "forward in 7 of 8 drops" in text and "calm in 8 of 8" in text
+    rotor.write_text('[[rotor.supports]]\nstation = "coupling"\nkyy = 3.0e5\n')  # the rig moved on: stale
+    assert alignment_summary(scan, rotor) is None and alignment_lines(None) == []
+    rotor.write_text('[[rotor.supports]]\nstation = "coupling"\nkyy = 1.0e5\n')
+    scan.write_text(scan.read_text()[:-40])  # torn by a kill
+    assert alignment_summary(scan, rotor) is None
+
+
+def test_alignment_summary_of_the_checkout():
+    """The checkout's stored alignment study (docs/studies/coupling_alignment/) reads as docs/calibration.md's
+    session 41 states it: the switch holds from -0.10 to +0.05 mm and fails with the motor aligned at rest."""
+    from rotorlanding.validate import alignment_summary
+
+    al = alignment_summary()
+    assert al is not None and al["k"] == 1.0e5
+    assert {s["offset_z_m"]: s["pass"] for s in al["switch"]} == {5e-5: True, 0.0: True, -5e-5: True, -1e-4: True,
+                                                                  -2e-4: False}
+
+
 def test_joint_screen_summary_of_the_checkout():
     """The checkout's stored funnels read as docs/calibration.md's sessions 37-38 state them: 20 + 21 rotors in
     Table 1's band landed, none passing the five checks, 8 missing one (7 of them the ribbon check)."""
