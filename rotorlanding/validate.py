@@ -1206,42 +1206,67 @@ def joint_screen_summary(files=None) -> dict | None:
 ALIGNMENT_FILE = "docs/studies/coupling_alignment/scan.jsonl"
 
 
-def alignment_summary(path=None, rotor_file=None) -> dict | None:
-    """What the stored alignment study found: Table 1's switch (the backward landing at mu_rad 0.3 and 0.15) and
-    the other landings with the motor's axis moved over its bound (``rotor.supports.2.offset_z``), each judged by
-    the switch's own rule (``CLASS_SHARE`` of the drops): {"k": the coupling's stiffness [N/m], "switch": [{"offset_z_m",
-    "backward", "calm", "n", "frequency_hz", "pass"}], "other": [{"case", "offset_z_m", "de_counts", "n",
-    "frequency_hz"}]}, offsets descending. None when the file is absent or torn, or was landed on another coupling
-    stiffness than the rig's (a stale study is not reported as the rig's)."""
+def scenario_fingerprint(path) -> str:
+    """A hash of the values a scenario file gives a landing (its includes resolved; comments and layout left out): a
+    stored study records it, and its summary is reported only while the scenario still gives the same values."""
+    import hashlib
+
     from .config import load_toml
 
+    return hashlib.sha256(json.dumps(load_toml(Path(path)), sort_keys=True, default=str).encode()).hexdigest()[:16]
+
+
+def static_offset_z() -> float:
+    """The rig's motor axis from the bearings' straight axis [m] (``offset_z`` of the rotor file's coupling support;
+    0 without one)."""
+    from .config import load_toml
+
+    sup = load_toml(project_root() / "scenarios" / "rig_rotor.toml")["rotor"].get("supports", [])
+    return float(next((s.get("offset_z", 0.0) for s in sup if s.get("station") == "coupling"), 0.0))
+
+
+def alignment_summary(path=None, scenarios=None) -> dict | None:
+    """What the stored alignment study found: Table 1's switch (the backward landing at mu_rad 0.3 and 0.15) and
+    the other landings with the motor's axis moved over its bound (``rotor.supports.2.offset_z``), each judged as
+    validate's cause checks judge it (``CLASS_SHARE`` of the drops: the landing's class for the switch and the
+    no-whirl landing, the DE journal's for the forward ones): {"k": the coupling's stiffness [N/m], "switch":
+    [{"offset_z_m", "backward", "calm", "n", "frequency_hz", "pass"}], "other": [{"case", "offset_z_m", "ok", "n",
+    "frequency_hz"}]}, offsets descending. None when the file is absent or torn, or a record's scenario no longer
+    gives the values it was landed on (``scenario_fingerprint``; ``scenarios``: the folder of the paper scenarios):
+    a stale study is not reported as the rig's."""
+    folder = Path(scenarios) if scenarios is not None else project_root() / "scenarios" / "paper"
     try:
         recs = _read_jsonl(Path(path) if path is not None else project_root() / ALIGNMENT_FILE)
-        rotor = load_toml(Path(rotor_file) if rotor_file is not None else project_root() / "scenarios" / "rig_rotor.toml")
-        k_rig = next(float(s["kyy"]) for s in rotor["rotor"]["supports"] if s["station"] == "coupling")
-        if not recs or any(float(r["coupling_n_per_m"]) != k_rig for r in recs):
+        prints = {c: scenario_fingerprint(folder / f"{c}.toml") for c in {r["case"] for r in recs}}
+        if not recs or any(r.get("rig_fingerprint") != prints[r["case"]] for r in recs) \
+                or len({r["coupling_n_per_m"] for r in recs}) != 1:
             return None
         bw = {r["offset_z_m"]: r for r in recs if r["case"] == "backward_whirl_landing" and r["mu_rad"] == 0.3}
         calm = {r["offset_z_m"]: r for r in recs if r["case"] == "backward_whirl_landing" and r["mu_rad"] == 0.15}
         switch = []
         for oz in sorted(set(bw) & set(calm), reverse=True):
-            n = int(bw[oz]["drops"])
-            b_n, c_n = int(bw[oz]["de_counts"].get("backward", 0)), int(calm[oz]["de_counts"].get("none", 0))
+            n, n_calm = int(bw[oz]["drops"]), int(calm[oz]["drops"])
+            b_n, c_n = int(bw[oz]["counts"].get("backward", 0)), int(calm[oz]["counts"].get("none", 0))
             switch.append({"offset_z_m": oz, "backward": b_n, "calm": c_n, "n": n, "frequency_hz": bw[oz]["de_frequency_hz"],
-                           "pass": b_n >= class_need(n) and c_n >= class_need(int(calm[oz]["drops"]))})
-        other = [{"case": r["case"], "offset_z_m": r["offset_z_m"], "de_counts": r["de_counts"], "n": int(r["drops"]),
-                  "frequency_hz": r["de_frequency_hz"]}
-                 for r in sorted(recs, key=lambda r: -r["offset_z_m"]) if r["case"] != "backward_whirl_landing"]
-    except (OSError, ValueError, KeyError, TypeError, StopIteration):
+                           "pass": b_n >= class_need(n) and c_n >= class_need(n_calm)})
+        other = []
+        for r in sorted(recs, key=lambda r: -r["offset_z_m"]):
+            if r["case"] == "backward_whirl_landing":
+                continue
+            fwd = r["case"].startswith("forward")
+            other.append({"case": r["case"], "offset_z_m": r["offset_z_m"], "n": int(r["drops"]),
+                          "ok": int((r["de_counts"] if fwd else r["counts"]).get("forward" if fwd else "none", 0)),
+                          "frequency_hz": r["de_frequency_hz"]})
+    except (OSError, ValueError, KeyError, TypeError, AttributeError, InputError):
         return None
-    return {"k": k_rig, "switch": switch, "other": other}
+    return {"k": float(recs[0]["coupling_n_per_m"]), "switch": switch, "other": other}
 
 
-def alignment_lines(al: dict | None) -> list[str]:
-    """The report's paragraph on the alignment study (``alignment_summary``); nothing without one."""
+def alignment_lines(al: dict | None, rig_offset_z: float = 0.0) -> list[str]:
+    """The report's paragraph on the alignment study (``alignment_summary``); nothing without one. The range it
+    says the switch holds over is the unbroken run of passing offsets around the rig's own (``rig_offset_z``)."""
     if not al or not al["switch"]:
         return []
-    held = [s["offset_z_m"] for s in al["switch"] if s["pass"]]
     t1 = paper()["table1"]
     f_exp = t1["experimental"]["frequency_hz"]
     f_band = band(t1["simulated"]["frequency_hz"], f_exp)
@@ -1249,30 +1274,36 @@ def alignment_lines(al: dict | None) -> list[str]:
     def freq(f):
         return "" if not f else f" ({f:.1f} Hz" + ("" if abs(f - f_exp) <= f_band else ", outside Table 1's band") + ")"
 
-    text = (f"Set, not fitted, and what the switch hangs on: the motor coupling ({al['k']:.3g} N/m laterally, about the "
-            "softest catalogued bellows coupling) with the motor's axis on the levitated one (`rotor.supports.2.offset_z` "
-            "= 0). Moved over its alignment bound (`docs/studies/coupling_alignment.py`, stored, not re-run here; "
-            "docs/calibration.md, session 41), Table 1's switch (backward at mu_rad 0.3 / calm at 0.15, DE journal, by "
-            "this check's rule): "
-            + "; ".join(f"{s['offset_z_m'] * 1e3:+.2f} mm {s['backward']} / {s['calm']} of {s['n']}"
-                        + freq(s["frequency_hz"]) + (" PASS" if s["pass"] else " FAIL")
-                        for s in al["switch"]))
-    lost = [s["offset_z_m"] for s in al["switch"] if not s["pass"]]
-    if held:
-        text += (f". It holds with the motor from {min(held) * 1e3:+.2f} to {max(held) * 1e3:+.2f} mm of the levitated "
-                 "axis" + (" and fails at " + ", ".join(f"{x * 1e3:+.2f}" for x in lost) + " mm" if lost else ""))
+    sw = al["switch"]
+    text = (f"Set, not fitted, and what the switch hangs on: the motor coupling ({al['k']:.3g} N/m laterally), its "
+            f"motor's axis at `rotor.supports.2.offset_z` = {rig_offset_z * 1e3:+.3g} mm from the bearings' straight "
+            "axis. Moved over its alignment bound (`docs/studies/coupling_alignment.py`, stored, not re-run here; "
+            "docs/calibration.md, session 41), Table 1's switch (drops backward at mu_rad 0.3 / calm at 0.15, by this "
+            "check's rule): "
+            + "; ".join(f"{s['offset_z_m'] * 1e3:+.3g} mm {s['backward']} / {s['calm']} of {s['n']}"
+                        + freq(s["frequency_hz"]) + (" PASS" if s["pass"] else " FAIL") for s in sw))
+    i = min(range(len(sw)), key=lambda j: abs(sw[j]["offset_z_m"] - rig_offset_z))
+    if sw[i]["pass"]:
+        lo = hi = i
+        while hi + 1 < len(sw) and sw[hi + 1]["pass"]:
+            hi += 1
+        while lo > 0 and sw[lo - 1]["pass"]:
+            lo -= 1
+        text += (f". Around the rig's alignment it holds from {sw[hi]['offset_z_m'] * 1e3:+.3g} to "
+                 f"{sw[lo]['offset_z_m'] * 1e3:+.3g} mm (the offsets landed)")
+    else:
+        text += ". It fails at the offset nearest the rig's own"
     fwd = [o for o in al["other"] if o["case"].startswith("forward")]
     calm = [o for o in al["other"] if o["case"] == "no_whirl_landing"]
     parts = []
     if fwd:
         parts.append(f"the forward landings' DE journal ({', '.join(sorted({o['case'] for o in fwd}))}) whirls forward "
-                     f"in {sum(o['de_counts'].get('forward', 0) for o in fwd)} of {sum(o['n'] for o in fwd)} drops")
+                     f"in {sum(o['ok'] for o in fwd)} of {sum(o['n'] for o in fwd)} drops")
     if calm:
-        parts.append(f"the no-whirl landing is calm in {sum(o['de_counts'].get('none', 0) for o in calm)} of "
-                     f"{sum(o['n'] for o in calm)}")
+        parts.append(f"the no-whirl landing is calm in {sum(o['ok'] for o in calm)} of {sum(o['n'] for o in calm)}")
     if parts:
         offs = sorted({o["offset_z_m"] for o in al["other"]}, reverse=True)
-        text += "; at " + ", ".join(f"{x * 1e3:+.2f}" for x in offs) + " mm " + " and ".join(parts)
+        text += "; at " + ", ".join(f"{x * 1e3:+.3g}" for x in offs) + " mm " + " and ".join(parts)
     return ["", text + "."]
 
 
@@ -1648,8 +1679,8 @@ def report_markdown(result: dict) -> str:
             + ("" if c["se"] is None else f" ({c['se']:.2g})")
         lines.append(f"| {c['check']} | {c['rule']} | {_fmt(c.get('ours'))} | {m} | {_verdict(c)} | "
                      f"{c.get('provenance', 'predicted')} |")
-    if not result.get("rig_overlay"):
-        lines += alignment_lines(alignment_summary())
+    if not result.get("rig_overlay") and not result.get("overrides"):
+        lines += alignment_lines(alignment_summary(), static_offset_z())
     held = [c for c in ev["checks"] if c["group"] == "held-out"]
     # the held-out study's drops per speed (its fit's ensemble), as the study recorded them
     drops = next((c["robust"]["drops"] for c in held if (c.get("robust") or {}).get("drops")), None)

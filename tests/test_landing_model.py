@@ -111,7 +111,9 @@ def test_non_rotating_drop_settles_at_hand_equilibrium(sets):
         p = b.params
         z_end = q[-1, b.i_station + 1]
         # compare the deflection beyond the clearance (the part the laws produce)
-        assert (z_end + p.clearance) == pytest.approx(expected[b.name] + p.clearance, rel=0.01), b.name
+        # (to 1e-3: the coupling moves the NDE by 0.6 %, the DE by 12 %; the landing meets the hand values to 1e-5
+        # with it and 5e-4 without)
+        assert (z_end + p.clearance) == pytest.approx(expected[b.name] + p.clearance, rel=1e-3), b.name
         assert abs(q[-1, b.i_station]) < 1e-7  # no friction-driven drift without spin
         assert np.max(np.abs(v[-200:, b.i_station + 1])) < 1e-4  # at rest
 

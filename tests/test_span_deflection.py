@@ -72,7 +72,7 @@ def test_with_the_coupling_in_k_a_boundary_motion_rebuilds_its_static_shape(land
     bent = span_deflection(s, q)["station_peak_m"]["coupling"]
     free = span_deflection(spec, _rigid(spec, a, b, c, d))["station_peak_m"]["coupling"]
     assert free == pytest.approx(line, rel=1e-9)
-    assert abs(bent - line) > 1e-3 * line
+    assert abs(bent - line) > 0.02 * line  # 3.7 % on the rig
 
 
 def test_the_peak_is_over_time_and_a_bending_mode_moves_the_span_not_the_sleeves(spec):

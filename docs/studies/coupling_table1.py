@@ -32,6 +32,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from ensemble import ensemble  # noqa: E402  (the study tool beside this script)
 
 from rotorlanding.safeio import atomic_write_text  # noqa: E402
+from rotorlanding.validate import scenario_fingerprint  # noqa: E402
 
 PAPER = Path(__file__).resolve().parents[2] / "scenarios" / "paper"
 #: coupling stiffnesses [N/m]: the rig's 0, then from well below to above the softest catalogued coupling
@@ -49,7 +50,10 @@ def row(case: str, k: float, oz: float, n: int, mu: float | None, workers: int, 
     de = r["stats"].get("de") or {}
     moving = [m for m in r["members"] if m.get("de_direction") not in (None, "none")]
     onsets = [m["onset_s"] for m in moving if m.get("onset_s") is not None]
+    # (since session 41 also the landing's classes, which validate's switch and no-whirl checks read, and the
+    # fingerprint of the scenario's values, so that validate reports a stored study only while the rig is the same)
     return {"case": case, "coupling_n_per_m": k, "offset_z_m": oz, "mu_rad": mu, "drops": n,
+            "counts": r["stats"].get("counts"), "rig_fingerprint": scenario_fingerprint(PAPER / f"{case}.toml"),
             "de_counts": de.get("counts"), "de_frequency_hz": de.get("frequency_hz"),
             "de_frequency_se_hz": de.get("frequency_se_hz"),
             "median_onset_s": statistics.median(onsets) if onsets else None}
