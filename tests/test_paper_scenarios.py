@@ -815,7 +815,11 @@ def test_alignment_summary_judges_the_switch_per_offset_and_drops_a_stale_study(
     import json
     import shutil
 
-    from rotorlanding.validate import alignment_lines, alignment_summary, scenario_fingerprint
+    from rotorlanding.validate import (
+        alignment_lines,
+        alignment_summary,
+        scenario_fingerprint,
+    )
 
     paper = tmp_path / "paper"
     paper.mkdir()
