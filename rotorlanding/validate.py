@@ -1219,10 +1219,10 @@ def scenario_fingerprint(path) -> str:
 def static_offset_z() -> float:
     """The rig's motor axis from the bearings' straight axis [m] (``offset_z`` of the rotor file's coupling support;
     0 without one)."""
-    from .config import load_toml
+    from .rotor import load_rotor
 
-    sup = load_toml(project_root() / "scenarios" / "rig_rotor.toml")["rotor"].get("supports", [])
-    return float(next((s.get("offset_z", 0.0) for s in sup if s.get("station") == "coupling"), 0.0))
+    rotor = load_rotor(project_root() / "scenarios" / "rig_rotor.toml")
+    return next((s.offset_z for s in rotor.supports if s.station == "coupling"), 0.0)
 
 
 def alignment_summary(path=None, scenarios=None) -> dict | None:

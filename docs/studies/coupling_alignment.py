@@ -31,9 +31,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from coupling_table1 import row  # noqa: E402  (the session-40 scan's landing row, the study beside this one)
-
-from rotorlanding.safeio import atomic_write_text  # noqa: E402
+from coupling_table1 import row, write_scan  # noqa: E402  (the session-40 scan's landing row and table)
 
 #: the rig's coupling stiffness [N/m] (scenarios/rig_rotor.toml since session 41)
 K_RIG = 1.0e5
@@ -65,18 +63,7 @@ def main(argv=None) -> int:
             for case in OTHER:
                 rows.append(row(case, K_RIG, oz, a.n_other, None, a.workers, tmp))
                 print(json.dumps(rows[-1]), flush=True)
-    out = Path(a.out)
-    out.mkdir(parents=True, exist_ok=True)
-    atomic_write_text(out / "scan.jsonl", "".join(json.dumps(r) + "\n" for r in rows))
-    print("| landing | motor axis offset_z [mm] | mu_rad | DE journal: drops per class | DE median f [Hz] | median onset [s] |")
-    print("|---|---|---|---|---|---|")
-    for r in rows:
-        f = r["de_frequency_hz"]
-        se = r["de_frequency_se_hz"]
-        ft = "-" if f is None else f"{f:.1f}" + ("" if se is None else f" +/- {se:.1f}")
-        on = "-" if r["median_onset_s"] is None else f"{r['median_onset_s']:.3f}"
-        print(f"| {r['case']} | {r['offset_z_m'] * 1e3:+.3g} | {r['mu_rad'] if r['mu_rad'] is not None else '-'} "
-              f"| {r['de_counts']} | {ft} | {on} |")
+    write_scan(rows, a.out, {"motor axis offset_z [mm]": lambda r: f"{r['offset_z_m'] * 1e3:+.3g}"})
     return 0
 
 

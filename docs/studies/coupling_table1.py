@@ -77,20 +77,28 @@ def main(argv=None) -> int:
             for case in OTHER:
                 rows.append(row(case, k, 0.0, a.n_other, None, a.workers, tmp))
                 print(json.dumps(rows[-1]), flush=True)
-    out = Path(a.out)
+    write_scan(rows, a.out, {"coupling [N/m]": lambda r: f"{r['coupling_n_per_m']:.0e}",
+                             "motor axis": lambda r: "levitated" if r["offset_z_m"] == 0 else "at rest"})
+    return 0
+
+
+def write_scan(rows: list[dict], out, lead: dict) -> None:
+    """OUT/scan.jsonl (atomically) and the table of the rows on stdout: the landing, the ``lead`` columns (header ->
+    cell of a row), mu_rad, the DE journal's classes, its median frequency and the median onset."""
+    out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / "scan.jsonl", "".join(json.dumps(r) + "\n" for r in rows))
-    print("| landing | coupling [N/m] | motor axis | mu_rad | DE journal: drops per class | DE median f [Hz] | median onset [s] |")
-    print("|---|---|---|---|---|---|---|")
+    heads = ["landing", *lead, "mu_rad", "DE journal: drops per class", "DE median f [Hz]", "median onset [s]"]
+    print("| " + " | ".join(heads) + " |")
+    print("|" + "---|" * len(heads))
     for r in rows:
         f = r["de_frequency_hz"]
         se = r["de_frequency_se_hz"]
         ft = "-" if f is None else f"{f:.1f}" + ("" if se is None else f" +/- {se:.1f}")
         on = "-" if r["median_onset_s"] is None else f"{r['median_onset_s']:.3f}"
-        axis = "levitated" if r["offset_z_m"] == 0 else "at rest"
-        print(f"| {r['case']} | {r['coupling_n_per_m']:.0e} | {axis} | {r['mu_rad'] if r['mu_rad'] is not None else '-'} "
-              f"| {r['de_counts']} | {ft} | {on} |")
-    return 0
+        cells = [r["case"], *(cell(r) for cell in lead.values()), "-" if r["mu_rad"] is None else r["mu_rad"],
+                 r["de_counts"], ft, on]
+        print("| " + " | ".join(str(c) for c in cells) + " |")
 
 
 if __name__ == "__main__":
