@@ -258,8 +258,28 @@ def cmd_verdict(args) -> int:
 
 
 def cmd_validate(args) -> int:
-    from .validate import check_cases, check_line, counts_line, validate
+    from .validate import check_cases, check_line, counts_line, report_from_run, validate
 
+    if args.report_from is not None:
+        # the run's own landings are rendered: options that would change them have no meaning here
+        for flag, given in (("--quick", args.quick), ("--rig", args.rig is not None), ("--set", bool(args.sets)),
+                            ("--out", args.out != "validation")):
+            if given:
+                raise InputError(flag, "given with --report-from", "not allowed: the report is rendered from RUN's "
+                                 "own landings, into RUN (and --publish)")
+        if not Path(args.report_from).is_dir():
+            raise InputError("--report-from", args.report_from, "must be the folder of a rotorlanding validate run")
+        if args.publish is not None and not Path(args.publish).is_dir():
+            raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
+        check_out_dir(args.report_from, "--report-from")
+        if args.publish is not None:
+            check_out_dir(args.publish, "--publish")
+        res = report_from_run(args.report_from, publish=args.publish)
+        for c in res["evaluation"]["checks"]:
+            print(check_line(c))
+        print(counts_line(res["evaluation"]).replace("**", "") + f" Report: {args.report_from}/validation.md "
+              "(rendered from the stored run, no landing)")
+        return 0
     if args.workers < 1:
         raise InputError("--workers", args.workers, "must be >= 1")
     if args.rig is not None and not Path(args.rig).is_file():
@@ -489,6 +509,10 @@ def build_parser() -> argparse.ArgumentParser:
                                                 "(e.g. scenarios/rig_rotor_first.toml)")
     va.add_argument("--set", dest="sets", action="append", default=[], metavar="KEY=VALUE",
                     help="override a value in every landing, e.g. --set solver.step_control='auto' (stated in the report)")
+    va.add_argument("--report-from", default=None, metavar="RUN",
+                    help="no landing: render the report and figures again from the stored run in RUN (a validate "
+                         "--out folder), e.g. after a change of the report's wording; refused when a scenario "
+                         "gives other values than RUN was landed on. With --publish DIR the report goes there too")
     va.set_defaults(func=cmd_validate)
 
     an = sub.add_parser("animate", help="render a results.h5 offline (Exudyn's raytracer: the rotor in 3D, and "

@@ -2142,6 +2142,9 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
                       "packages": _package_versions(),
                       "case_wall_s": {k: round(v.get("performance", {}).get("wall_s", float("nan")), 2)
                                       for k, v in summaries.items()}}}
+    # what the landings were made of: a report rendered again from this run (report_from_run) is refused once
+    # a scenario gives other values
+    result["scenario_fingerprints"] = scenario_fingerprints(rig)
     result["ribbon_modal"] = ribbon_modal_shift(rig)
     result["static_support_loads_n"] = static_loads(rig)
     # the stored fits are of the rig: a --rig overlay's landings are not theirs
@@ -2156,6 +2159,78 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     return result
 
 
+def scenario_fingerprints(rig=None) -> dict:
+    """{case: fingerprint} of every case validate lands: its paper scenario's values (:func:`scenario_fingerprint`)
+    with the case's own overrides (the held-out ones read from the stored fits), and the ``rig`` overlay's values."""
+    import hashlib
+
+    plan = {**CASES, **studies(rig)}
+    prints = {key: hashlib.sha256(json.dumps([scenario_fingerprint(paper_dir() / f), list(sets)]).encode()).hexdigest()[:16]
+              for key, (f, sets) in sorted(plan.items())}
+    if rig is not None:
+        prints["rig overlay"] = scenario_fingerprint(rig)
+    return prints
+
+
+#: the dicts of ``ribbon_modal`` keyed by the ribbon's stiffness factor (a float, which JSON writes as a string)
+_FACTOR_KEYED = ("modes_hz", "support_n_m", "forward_modes_hz", "shift", "ribbon_energy_share")
+
+
+def load_result(run_dir) -> dict:
+    """A stored run's ``validation.json`` as :func:`validate` returned it: JSON wrote the ribbon study's factor keys
+    as strings, and the report reads them as the floats they were. A missing or torn file is one line."""
+    path = Path(run_dir) / "validation.json"
+    try:
+        result = _from_json(path.read_text())
+    except FileNotFoundError:
+        raise InputError("run folder", str(run_dir), "must hold the validation.json of a rotorlanding validate run") from None
+    except (OSError, ValueError, AttributeError) as exc:
+        raise InputError("validation.json", str(path), f"unreadable ({type(exc).__name__}): re-run rotorlanding validate",
+                         file=str(path)) from None
+    if not isinstance(result, dict) or "evaluation" not in result:
+        raise InputError("validation.json", str(path), "not a validate run's result (no evaluation)", file=str(path))
+    return result
+
+
+def _from_json(text: str) -> dict:
+    result = json.loads(text)
+    rm = result.get("ribbon_modal") or {}
+    for key in _FACTOR_KEYED:
+        if isinstance(rm.get(key), dict):
+            rm[key] = {float(k): v for k, v in rm[key].items()}
+    return result
+
+
+def report_from_run(run_dir, publish=None) -> dict:
+    """Render the report (and its figures) again from a stored run, with no landing: for a report whose wording or
+    figures changed, or to publish a run made earlier. Refused when a scenario the run landed gives other values
+    now (its fingerprint, :func:`scenario_fingerprints`), since the report would then name a rig it was not landed
+    on; a run older than the fingerprints is refused too."""
+    out = Path(run_dir)
+    result = load_result(out)
+    src = str(out / "validation.json")
+    stored = result.get("scenario_fingerprints")
+    if not isinstance(stored, dict):
+        raise InputError("scenario_fingerprints", None, "absent: the run predates them (session 42); re-run "
+                         "rotorlanding validate", file=src)
+    if result.get("rerenderable") is not True:
+        raise InputError("rerenderable", result.get("rerenderable"), "the run's stored result did not give its own "
+                         "report back when it was written; re-run rotorlanding validate", file=src)
+    rig = result.get("rig_overlay")
+    if rig is not None and not Path(rig).is_file():
+        raise InputError("rig_overlay", rig, "the run's --rig file is gone; re-run rotorlanding validate", file=src)
+    now = scenario_fingerprints(rig)
+    changed = sorted(k for k in set(stored) | set(now) if stored.get(k) != now.get(k))
+    if changed:
+        raise InputError("scenario_fingerprints", changed[0], "this scenario gives other values than the run was "
+                         "landed on (" + ", ".join(changed) + "); re-run rotorlanding validate", file=src)
+    try:
+        _write_report(result, out, rig, publish)
+    except OSError as exc:
+        raise WriteError(getattr(exc, "filename", None) or out, exc) from None
+    return result
+
+
 def _write_report(result: dict, out: Path, rig, publish) -> None:
     """The figures, validation.json and the report into ``out`` (and ``publish``), each atomically."""
     result["figures"] = plot_validation(result, out)
@@ -2165,8 +2240,12 @@ def _write_report(result: dict, out: Path, rig, publish) -> None:
     # the same text reads right in both places
     result["gallery_dir"] = gallery_dir(name)
     result["gallery"] = copy_gallery(out, out / result["gallery_dir"])
-    atomic_write_text(out / "validation.json", json.dumps(result, indent=2, default=float))
     md = report_markdown(result)
+    # the stored result must give the same report back (report_from_run renders from it): checked here, where
+    # both are at hand, and recorded, so a loss in the JSON (float keys, a numpy value) is found by the run itself
+    result.pop("rerenderable", None)
+    result["rerenderable"] = report_markdown(_from_json(json.dumps(result, default=float))) == md
+    atomic_write_text(out / "validation.json", json.dumps(result, indent=2, default=float))
     atomic_write_text(out / "validation.md", md)
     if publish is not None:
         copy_gallery(out, Path(publish) / result["gallery_dir"])
