@@ -151,8 +151,9 @@ GALLERY = (
      "rotor at each bearing, positive up, the sign of the paper's tables."),
     ("forward_7000_representative/orbits.png", "forward_7000_orbits.png",
      "7000 rpm combined landing, the representative drop: journal orbits relative to the inner race with "
-     "the clearance circle (top) and absolute, in the housing frame (bottom; they include the race, "
-     "ball-set and ribbon deflection, so they run outside the clearance circle)."),
+     "the clearance circle (top; they run a few micrometres past it where the Hertz contact is pressed in) and "
+     "absolute, in the housing frame (bottom; they include the race, ball-set and ribbon deflection, so they run "
+     "outside the clearance circle)."),
     ("backward_whirl_representative/orbits.png", "backward_whirl_orbits.png",
      "Backward-whirl landing (Table 1), the representative drop: orbits as above."),
 )
@@ -411,7 +412,8 @@ def static_loads(rig=None) -> dict[str, float]:
 
 
 def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "DE_sleeve",
-                       support_n_m: float | None = None, mean: dict | None = None) -> list[str]:
+                       support_n_m: float | None = None, mean: dict | None = None,
+                       steady: dict | None = None) -> list[str]:
     """What the centres of the Table 2 force rows and of the displacement rows say (a reading, not a
     check). Over a steady whirl the rotor's mean acceleration is zero, so the time-mean force a catcher
     bearing puts on the rotor is the rotor's static load on it (``loads``; two supports split the
@@ -419,7 +421,8 @@ def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "D
     (``_representative_figures``), which tests the statement on our own landing. (max + min) / 2 is the
     mean only for a harmonic force. Both force rows in their bands ask (max + min) / 2 >= (the low ends
     of the two bands) / 2 of any signal. ``support_n_m``: the landed support's stiffness, with which a
-    displacement centre reads as the load that presses the race down by as much (centre = -W / K_s)."""
+    displacement centre reads as the load that presses the race down by as much (centre = -W / K_s).
+    ``steady``: :func:`steady_extremes`, the same rows over the steady whirl only (a reading)."""
     o = next((o for o in orbits if o["table"] == "Table 2, force"), None)
     if o is None or not loads or not loads.get(station, 0.0) > 0.0:
         return []
@@ -444,6 +447,15 @@ def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "D
              + ": on a journal that whirls round its whole clearance, as the Fig. 39 DE checks ask of ours, a DE "
              "carrying several times our static load, or a journal that keeps off the top of its race "
              "(docs/calibration.md, sessions 16, 23 and 33).")
+    if steady:
+        f0, f1 = steady["force_n"]
+        z0, z1 = steady["disp_m"]
+        text += (" The table's rows are extremes over the whole landing, the first impacts and the whirl's first "
+                 "swings included. Over the second half of each drop's whirl (a steady whirl, from about "
+                 f"{steady['from_s']:.2g} s; medians of {steady['drops']} drops) the DE force runs {f0 / 1e3:.3g} .. "
+                 f"{f1 / 1e3:.3g} kN and the displacement {z0 * 1e3:.3g} .. {z1 * 1e3:.3g} mm: our whirl is largest "
+                 "where it starts and then settles. The paper does not say over which stretch it read its extremes, so "
+                 "this reading is shown, not judged (picking the stretch after seeing it would be a fit).")
     disp = [x for x in orbits if x["table"] in ("Table 1", "Table 2")]
     if disp and support_n_m:
         def load(d, who):
@@ -931,6 +943,106 @@ FIT_RECORDED = {"t1_disp_max": (WORN_FIT, "bw_v_disp_max_m"), "t1_disp_min": (WO
 def _near(cal: str) -> list[dict] | None:
     d = stored_run(cal)
     return None if d is None else [x for x in d["designs"] if x.get("within_noise_of_best")]
+
+
+#: Table 1's rows a backward calibration on the frequency alone predicts (issue 15, point 4): row key, the worn fit's
+#: per-design field
+FREQUENCY_ONLY_ROWS = (("t1_onset", "bw_onset_s"), ("t1_disp_max", "bw_v_disp_max_m"), ("t1_disp_min", "bw_v_disp_min_m"))
+
+
+def frequency_only_backward(designs: list[dict] | None = None) -> dict | None:
+    """What a backward calibration on Table 1's frequency alone predicts of the rest of Table 1 (issue 15, point 4),
+    read off the stored worn fit's designs (``designs``: its calibration.json rows; default the stored run of
+    ``WORN_FIT``): such a fit cannot reject a design whose landing whirls backward in ``CLASS_SHARE`` of its drops
+    with its median frequency inside Table 1's band; the one nearest the measured frequency is what it would
+    report. {"designs", "admissible", "fit": {design, worn_drag_torque, growth_angle, frequency_hz}, "rows": {key:
+    {fit, min, max, in_band, n}}}; None without a stored run or an admissible design. Every row here is a
+    prediction of the frequency: none was in such a fit's score."""
+    if designs is None:
+        run = stored_run(WORN_FIT)
+        designs = None if run is None else run.get("designs")
+    if not designs:
+        return None
+    sim, exp = _paper_values("table1", "frequency_hz")
+    bd = band(sim, exp)
+    keep = [d for d in designs if d.get("bw_direction") == "backward" and (d.get("bw_fraction") or 0.0) >= CLASS_SHARE
+            and d.get("bw_hz") is not None and abs(d["bw_hz"] - exp) <= bd]
+    if not keep:
+        return None
+    best = min(keep, key=lambda d: abs(d["bw_hz"] - exp))
+    rows = {}
+    table_rows = {r[0]: r for r in TABLE_ROWS}
+    for key, field in FREQUENCY_ONLY_ROWS:
+        r = table_rows[key]
+        rsim, rexp = _paper_values(r[3], r[4])
+        vals = [d[field] for d in keep if d.get(field) is not None]
+        if vals:
+            rows[key] = {"name": r[1], "unit": r[5], "scale": r[6], "fit": best.get(field), "min": min(vals),
+                         "max": max(vals), "n": len(vals), "in_band": sum(abs(v - rexp) <= band(rsim, rexp) for v in vals),
+                         "fit_in_band": best.get(field) is not None and abs(best[field] - rexp) <= band(rsim, rexp)}
+    return {"designs": len(designs), "admissible": len(keep), "frequency_band_hz": bd, "frequency_hz": exp,
+            "fit": {"design": best.get("design"), "frequency_hz": best["bw_hz"],
+                    "worn_drag_torque_n_m": best.get("bearings.DE.worn_drag_torque"),
+                    "growth_angle_rad": best.get("bearings.DE.worn_drag_growth_angle")},
+            "rows": rows}
+
+
+def frequency_only_lines(fo: dict | None) -> list[str]:
+    """The report's paragraph on :func:`frequency_only_backward`; nothing without it."""
+    if not fo:
+        return []
+    fit = fo["fit"]
+    return ["", (f"A backward calibration on the frequency alone (issue 15, point 4; the stored worn fit's "
+                 f"{fo['designs']} designs, `{STORED_FITS[WORN_FIT]}`, judged on Table 1's frequency only: backward in "
+                 f">= {CLASS_SHARE:.3g} of the drops within {fo['frequency_hz']:g} +/- {fo['frequency_band_hz']:.2g} Hz) "
+                 f"cannot reject {fo['admissible']} of them; the one nearest {fo['frequency_hz']:g} Hz, what such a fit "
+                 f"would report, is design {fit['design']} (T_w {fit['worn_drag_torque_n_m']:.3g} N m, growth angle "
+                 f"{fit['growth_angle_rad']:.3g} rad, {fit['frequency_hz']:.1f} Hz). What it predicts, none of it in "
+                 "its score: "
+                 + "; ".join(f"{r['name']} {_fmt(r['fit'], r['scale'])} {r['unit']} "
+                             f"({'PASS' if r['fit_in_band'] else 'FAIL'}; over the {fo['admissible']} admissible designs "
+                             f"{_fmt(r['min'], r['scale'])} .. {_fmt(r['max'], r['scale'])}, {r['in_band']} of {r['n']} "
+                             "in band)" for r in fo["rows"].values())
+                 + ". The table above reports the adopted worn fit, whose score held the onset as well (its onset row "
+                 "is marked fitted); its displacement rows are predictions in both (docs/calibration.md, session 18).")]
+
+
+def switch_sides(ensembles: dict, rig=None) -> dict | None:
+    """What each side of Table 1's switch is, read from its drops (a reading, not a check): the DE race's speed
+    over the rotor's at the end (median over the drops) at mu_rad 0.3 and 0.15 and on the healthy no-whirl landing,
+    the worn drag torque and the power it takes at the race's speed. None without the switch's ensembles."""
+    from .scenario import load_scenario
+
+    bw, calm = ensembles.get("backward_whirl"), ensembles.get("backward_mu_0.15")
+    if not bw or not calm:
+        return None
+    f, sets = CASES["backward_whirl"]
+    sc = load_scenario(paper_dir() / f, sets, overlays=[rig] if rig else ())
+    de = sc.bearings.get("DE")
+    t_w = de.worn_drag_torque if de is not None and sc.effects.get("worn_bearing_drag") else 0.0
+    healthy = ensembles.get("no_whirl") or {}
+    return {"worn_drag_torque_n_m": t_w, "omega_rad_s": sc.omega0,
+            "race_to_rotor": {"mu_0.3": bw.get("race_to_rotor"), "mu_0.15": calm.get("race_to_rotor"),
+                              "healthy": healthy.get("race_to_rotor")},
+            "race_to_rotor_max": {k: max((m.get("race_to_rotor") or 0.0) for m in e["members"])
+                                  for k, e in (("mu_0.3", bw), ("mu_0.15", calm)) if e.get("members")}}
+
+
+def switch_lines(sw: dict | None) -> list[str]:
+    """The report's paragraph on :func:`switch_sides`; nothing without it."""
+    if not sw or sw["race_to_rotor"]["mu_0.3"] is None or sw["race_to_rotor"]["mu_0.15"] is None:
+        return []
+    r, t_w, om = sw["race_to_rotor"], sw["worn_drag_torque_n_m"], sw["omega_rad_s"]
+    text = (f"What the two sides of the mu_rad switch are (the worn DE bearing, T_w {t_w:.3g} N m): at mu_rad 0.3 the "
+            f"DE race ends at {r['mu_0.3']:.2f} of the rotor's speed (median of the drops), so the worn drag takes "
+            f"about {t_w * r['mu_0.3'] * om / 1e3:.2g} kW; at mu_rad 0.15 it ends at {r['mu_0.15']:.2g} (at most "
+            f"{sw['race_to_rotor_max'].get('mu_0.15', 0.0):.2g}): the drag holds the race, and the calm side is a "
+            "sleeve sliding on a race at rest")
+    if r.get("healthy") is not None:
+        text += f", not the healthy bearing's landing, whose race reaches {r['healthy']:.3g} (the no-whirl check above)"
+    text += (". The worn torque's bound tops out at a computed seized race (dry sliding of its balls, the rig table); "
+             "no measured running torque of a damaged catcher bearing was found to bound it instead.")
+    return ["", text]
 
 
 def rows_over_fit() -> dict[str, dict]:
@@ -1654,7 +1766,7 @@ def report_markdown(result: dict) -> str:
                          f"{o['half_range_error']:+.0%} / {o['paper_half_range_error']:+.0%} |")
         lines += force_centre_lines(orbits, result.get("static_support_loads_n"),
                                     support_n_m=((result.get("ribbon_modal") or {}).get("support_n_m") or {}).get(1.0),
-                                    mean=result.get("de_force_mean_n"))
+                                    mean=result.get("de_force_mean_n"), steady=result.get("steady_extremes"))
     lines += shape_lines(ev["checks"])
     over = result.get("rows_over_fit") or {}
     if over:
@@ -1670,6 +1782,7 @@ def report_markdown(result: dict) -> str:
                              + "; ".join(f"{o['name']} {_fmt(o['min'], o['scale'])} .. {_fmt(o['max'], o['scale'])} "
                                          f"{o['unit']}, {o['in_band']} of {o['n_designs']} in band" for o in rows) + "."
                              for cal, rows in by_fit.items())]
+    lines += frequency_only_lines(result.get("frequency_only"))
     lines += ["", "## The paper's causes", "",
               "Each judged on the share of drops in the expected class; the margin of a class check is in drops "
               "(its standard error: binomial, sqrt(n p (1 - p)), p kept half a drop from 0 and 1).", "",
@@ -1679,6 +1792,7 @@ def report_markdown(result: dict) -> str:
             + ("" if c["se"] is None else f" ({c['se']:.2g})")
         lines.append(f"| {c['check']} | {c['rule']} | {_fmt(c.get('ours'))} | {m} | {_verdict(c)} | "
                      f"{c.get('provenance', 'predicted')} |")
+    lines += switch_lines(result.get("switch_sides"))
     if not result.get("rig_overlay") and not result.get("overrides"):
         lines += alignment_lines(alignment_summary(), static_offset_z())
     held = [c for c in ev["checks"] if c["group"] == "held-out"]
@@ -2084,6 +2198,41 @@ def representative_force_mean(result: dict, out: Path, key: str = "forward_7000"
     return {"drop": k, "from_s": float(t[sel][0]), "mean_n": float(np.trapezoid(fz, t[sel]) / (t[sel][-1] - t[sel][0]))}
 
 
+def steady_extremes(result: dict, out: Path, key: str = "forward_7000", bearing: str = "DE") -> dict | None:
+    """The DE vertical force and displacement extremes over the second half of each whirling drop's whirl (from the
+    midpoint of its onset and the end: a steady whirl, the first impacts left out), medians over the drops of
+    ``key``'s ensemble (their results.h5 in ``out``): {drops, force_n: [min, max], disp_m: [min, max], from_s: the
+    median start}. A reading beside the table, whose rows are the whole landing's extremes; the paper does not
+    say over which stretch it read its extremes. None without the drops' results."""
+    import numpy as np
+
+    from .mechanisms import rotor_force
+    from .results import read_results
+
+    ens = (result.get("ensembles") or {}).get(key)
+    if not ens:
+        return None
+    rows = []
+    for k, m in enumerate(ens["members"]):
+        path = member_results(out, key, k)
+        if m["direction"] == "none" or m.get("onset_s") is None or not path.is_file():
+            continue
+        r = read_results(path)
+        t, z = r["time_s"], r["series"].get(f"{bearing}_z_m")
+        if z is None:
+            continue
+        half = t >= 0.5 * (t[0] + m["onset_s"] + t[-1])
+        if half.sum() < 2:
+            continue
+        fz = rotor_force(r["series"], bearing)[1][half]
+        rows.append((fz.min(), fz.max(), z[half].min(), z[half].max(), t[half][0] - t[0]))
+    if not rows:
+        return None
+    a = np.median(np.array(rows), axis=0)
+    return {"drops": len(rows), "of": len(ens["members"]), "force_n": [float(a[0]), float(a[1])],
+            "disp_m": [float(a[2]), float(a[3])], "from_s": float(a[4])}
+
+
 def representative_drop(ens: dict) -> int:
     """The drop that shows an ensemble: of the majority class, the one whose onset is nearest the
     median onset (for a calm ensemble, whose peak DE vertical displacement is nearest the median)."""
@@ -2149,6 +2298,8 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     result["static_support_loads_n"] = static_loads(rig)
     # the stored fits are of the rig: a --rig overlay's landings are not theirs
     result["rows_over_fit"] = {} if rig is not None else rows_over_fit()
+    result["frequency_only"] = None if rig is not None else frequency_only_backward()
+    result["switch_sides"] = switch_sides(ensembles, rig)
     result["causes_over_fit"] = {} if rig is not None else causes_over_fit()
     result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig), overlay=rig,
                                           over_fit={"rows": result["rows_over_fit"], "causes": result["causes_over_fit"]})
@@ -2235,6 +2386,7 @@ def _write_report(result: dict, out: Path, rig, publish) -> None:
     """The figures, validation.json and the report into ``out`` (and ``publish``), each atomically."""
     result["figures"] = plot_validation(result, out)
     result["de_force_mean_n"] = representative_force_mean(result, out)
+    result["steady_extremes"] = steady_extremes(result, out)
     name = "validation.md" if rig is None else f"validation_{Path(rig).stem}.md"
     # the report names its figure folder after its published name, in the run folder as well, so
     # the same text reads right in both places

@@ -85,3 +85,69 @@ def test_options_that_would_change_the_landings_are_refused(tmp_path, capsys, ex
     assert main(["validate", "--report-from", str(run)] + extra) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--report-from" in err[0]
+
+
+def _design(k, hz, fraction=1.0, direction="backward", onset=0.0, dmax=2.8e-4, dmin=-3.05e-4):
+    return {"design": k, "bw_direction": direction, "bw_fraction": fraction, "bw_hz": hz, "bw_onset_s": onset,
+            "bw_v_disp_max_m": dmax, "bw_v_disp_min_m": dmin, "bearings.DE.worn_drag_torque": 2.0 + k,
+            "bearings.DE.worn_drag_growth_angle": 100.0 * (k + 1)}
+
+
+def test_a_frequency_only_fit_keeps_what_the_frequency_cannot_reject():
+    # Table 1: 49 Hz, band 4.9 Hz; onset 0.4 s (band 0.04), displacement max 0.2 mm (0.05), min -0.4 mm (0.12)
+    designs = [_design(0, 48.0, onset=0.38, dmax=2.2e-4),          # admissible, nearest 49 Hz
+               _design(1, 52.0, onset=0.0),                         # admissible
+               _design(2, 49.1, fraction=0.8),                      # whirls in too few drops
+               _design(3, 49.0, direction="none"),                  # calm
+               _design(4, 60.0, onset=0.4)]                         # outside the band
+    fo = V.frequency_only_backward(designs)
+    assert fo["designs"] == 5 and fo["admissible"] == 2 and fo["fit"]["design"] == 0
+    on = fo["rows"]["t1_onset"]
+    assert (on["fit"], on["min"], on["max"], on["in_band"], on["fit_in_band"]) == (0.38, 0.0, 0.38, 1, True)
+    assert fo["rows"]["t1_disp_max"]["in_band"] == 1 and fo["rows"]["t1_disp_min"]["in_band"] == 2
+    text = "\n".join(V.frequency_only_lines(fo))
+    assert "cannot reject 2 of them" in text and "design 0" in text and "onset 0.38 s (PASS" in text
+    assert V.frequency_only_backward([_design(0, 70.0)]) is None and V.frequency_only_lines(None) == []
+
+
+def test_the_switch_reading_says_what_holds_the_calm_race():
+    ens = {"backward_whirl": {"race_to_rotor": 0.98, "members": [{"race_to_rotor": 0.97}, {"race_to_rotor": 0.99}]},
+           "backward_mu_0.15": {"race_to_rotor": 1e-4, "members": [{"race_to_rotor": 0.0}, {"race_to_rotor": 0.02}]},
+           "no_whirl": {"race_to_rotor": 0.993}}
+    sw = V.switch_sides(ens)
+    # the worn bearing's torque and the landing's speed come from the backward scenario itself
+    from rotorlanding.scenario import load_scenario
+    sc = load_scenario(V.paper_dir() / V.CASES["backward_whirl"][0])
+    assert sw["worn_drag_torque_n_m"] == sc.bearings["DE"].worn_drag_torque and sw["omega_rad_s"] == sc.omega0
+    assert sw["race_to_rotor_max"] == {"mu_0.3": 0.99, "mu_0.15": 0.02}
+    text = V.switch_lines(sw)[1]
+    power_kw = sc.bearings["DE"].worn_drag_torque * 0.98 * sc.omega0 / 1e3
+    assert f"about {power_kw:.2g} kW" in text and "race at rest" in text and "0.993" in text
+    assert V.switch_sides({"backward_whirl": ens["backward_whirl"]}) is None
+
+
+def test_steady_extremes_leave_the_first_swings_out(tmp_path, monkeypatch):
+    import numpy as np
+
+    import rotorlanding.mechanisms as mech
+    import rotorlanding.results as res
+
+    t = np.linspace(0.0, 1.0, 1001)
+    # a whirl from 0.2 s whose force swings +/-4 kN until 0.5 s and +/-1 kN after; displacement alike
+    amp = np.where(t < 0.5, 4000.0, 1000.0)
+    runs = {}
+    for k in range(3):
+        f = tmp_path / f"drop{k}.h5"
+        f.write_text("")
+        runs[str(f)] = {"time_s": t, "series": {"DE_z_m": amp * 1e-7 * np.sin(400 * t + k), "fz": amp * np.sin(400 * t + k)}}
+    monkeypatch.setattr(V, "member_results", lambda out, key, k: tmp_path / f"drop{k}.h5")
+    monkeypatch.setattr(res, "read_results", lambda p: runs[str(p)])
+    monkeypatch.setattr(mech, "rotor_force", lambda series, b: (None, series["fz"]))
+    members = [{"direction": "forward", "onset_s": 0.2}, {"direction": "forward", "onset_s": 0.2},
+               {"direction": "none", "onset_s": None}]
+    st = V.steady_extremes({"ensembles": {"forward_7000": {"members": members}}}, tmp_path)
+    # the second half of the whirl starts at (0.2 + 1.0) / 2 = 0.6 s, after the large swings; the calm drop is out
+    assert st["drops"] == 2 and st["of"] == 3 and st["from_s"] == pytest.approx(0.6)
+    assert st["force_n"][0] == pytest.approx(-1000.0, rel=1e-3) and st["force_n"][1] == pytest.approx(1000.0, rel=1e-3)
+    assert st["disp_m"][1] == pytest.approx(1e-4, rel=1e-3)
+    assert V.steady_extremes({"ensembles": {}}, tmp_path) is None
