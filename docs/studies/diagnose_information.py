@@ -10,8 +10,11 @@ noise of a difference of two means of R; never below FLOOR times the fixed scale
 gate (mean + t(0.95) sqrt(1 + 1/k) s of the member gaps, at least their largest), their ratio and
 the four largest whitened feature distances; one JSON per case in docs/studies/diagnose_information/
 
-usage: RECORDS=4 python docs/studies/diagnose_information.py CASE[,CASE...]|all [FLOOR] > out.txt
-Output of session 19: docs/studies/diagnose_information/ (4 and 8 records).
+usage: RECORDS=4 [FORCES=N] python docs/studies/diagnose_information.py CASE[,CASE...]|all [FLOOR] > out.txt
+FORCES=N (session 42) adds the four bearing force channels to every record, as the paper's rig had them
+(force sensors at the bearings: its Fig. 33-34 plot DE and NDE forces), with white noise of N newtons
+times the case's per-channel factor (0.5-2); the JSONs then end in _F.json.
+Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
 from pathlib import Path
@@ -23,6 +26,8 @@ from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, 
 from rotorlanding.ensemble import random_drop_offset, drop_offsets, DROP_RADIUS_M
 from rotorlanding.features import ensemble_features, gap_points, scale_of, WHIRL_SHARES
 R = int(__import__("os").environ.get("RECORDS", "4"))
+FORCE_NOISE_N = float(__import__("os").environ.get("FORCES", "0"))  # 0: no force channels (session 19's records)
+FORCE_CHANNELS = ("DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n")
 FLOOR = 0.1  # whitened scale never below this share of the fixed scale (main: the second argument)
 OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
 
@@ -82,6 +87,11 @@ def main(argv):
         tmp = Path(tempfile.mkdtemp())
         model = known_rig_model(tmp / f"{case['case']}.toml", case['off'], extra=THRUST if case['thrust'] else '')
         sen = B.sensor(i, case)
+        if FORCE_NOISE_N > 0:
+            frng = np.random.default_rng(9000 + i)
+            sen['channels'] = list(sen['channels']) + list(FORCE_CHANNELS)
+            sen['noise_by_channel'] = {**sen['noise_by_channel'],
+                                       **{ch: FORCE_NOISE_N * float(frng.uniform(0.5, 2.0)) for ch in FORCE_CHANNELS}}
         rng = np.random.default_rng(5000 + i)
         recs = []
         for k in range(R):
@@ -110,7 +120,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{"_F" if FORCE_NOISE_N > 0 else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
