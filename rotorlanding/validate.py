@@ -123,10 +123,10 @@ def _onset_note(outside: bool = False) -> str:
             "`worn_drag_growth_angle`), and that angle was calibrated with the drag torque on this table, "
             "scored on this ensemble's drops (`scenarios/calibration/worn_bearing.toml`): the onset row is "
             "a fitted number, not a prediction (docs/calibration.md, session 8)."
-            + (" What the fit could not reach, as session 32 found it on the session-31 rig (docs/calibration.md, "
-               "session 32): there the whirl starts at the first impacts, while the race spins up, and only a "
-               "heavier DE end (which cost Table 2's DE force) or a race lighter than its bound moved the "
-               "drops' onsets late." if outside else ""))
+            + (" What the fit could not reach, as session 32 found it on the session-31 rig and session 42 again on "
+               "this one (docs/calibration.md, sessions 32 and 42; `docs/studies/onset_probe/`): the whirl starts at "
+               "the first impacts, while the race spins up, and only a heavier DE end (which costs Table 2's DE force) "
+               "or a race lighter than its bound moved the drops' onsets late." if outside else ""))
 
 
 #: the cases whose ensemble members the landing figure reads back (its representative drops); the
