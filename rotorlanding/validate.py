@@ -247,6 +247,18 @@ def placement(value: float, bound, search) -> dict:
             "on_bound": not inside or clear < ON_BOUND}
 
 
+def clear_se(value: float, bound, search, span) -> float | None:
+    """The standard error of a fitted value's ``clear`` (``placement``): half the width of ``span``, the values of the
+    designs the fit cannot tell from its best (``fit_span``), as a share of the range whose end is nearest the value
+    (the bound or the search range, log where that range is): the fit's own scatter in the units of the rig check's
+    margin. None without a span or a bound."""
+    if not span or bound is None:
+        return None
+    ranges = [r for r in (bound, search) if r is not None]
+    nearest = min(ranges, key=lambda r: min(r.position(value), 1.0 - r.position(value)))
+    return abs(nearest.position(span[1]) - nearest.position(span[0])) / 2.0
+
+
 def search_bounds(space: Path) -> dict:
     """A calibration file's search ranges as Bounds, tied keys split: key -> Bound (named by the file)."""
     from .config import load_toml, tied_keys
@@ -1151,6 +1163,7 @@ def rig_checks(rig=None) -> list[dict]:
             if vals:
                 off = sum(not placement(x, b, search)["on_bound"] for x in vals)
                 robust = {"passing": off, "n": len(vals), "holds": off == len(vals)}
+        se = clear_se(value, b, search, span)
         same = True  # the tie is one value: the rig must hold it at every tied key
         for k in tied:
             try:
@@ -1163,7 +1176,8 @@ def rig_checks(rig=None) -> list[dict]:
         checks.append({"group": "rig", "check": f"{name} inside its physical bound", "pass": inside and margin >= 0 and same,
                        "rule": f"fitted by {cal}; inside its sourced bound and its search range, >= {ON_BOUND:.0%} "
                                "of their widths from either end",
-                       "ours": where, "margin": margin, "se": None, "within_noise": False, "robust": robust,
+                       "ours": where, "margin": margin, "se": se,
+                       "within_noise": margin is not None and se is not None and abs(margin) < se, "robust": robust,
                        "source": None if b is None else b.source})
     checks += [c for c in (screen_check(name, rig) for name in SCREENS) if c is not None]
     checks.append(rig_value_check(rig))
@@ -1856,11 +1870,17 @@ def report_markdown(result: dict) -> str:
         lines += ["", "## The rig: every calibrated parameter inside its physical bound, every other value inside its own", "",
                   "Bounds and their sources are written in the rig files (`[bounds]` of `scenarios/rig_rotor.toml`, "
                   "`scenarios/rig/rig.toml` and the backward scenario).", "",
-                  "| parameter | fitted by | value, bound, position | verdict | source of the bound |", "|---|---|---|---|---|"]
+                  "Margin: the value's distance from the nearer end of its bound or search range, less the on-bound "
+                  f"zone ({ON_BOUND:.0%}), as a share of that range's width; its standard error: half the spread of the "
+                  "designs the fit cannot tell from its best, in the same units (- where no fit or no spread: a value "
+                  "chosen, not fitted).", "",
+                  "| parameter | fitted by | value, bound, position | margin (s.e.) | verdict | source of the bound |",
+                  "|---|---|---|---|---|---|"]
         for c in rig:
+            m = "-" if c.get("margin") is None else f"{c['margin']:.2g}" + ("" if c.get("se") is None else f" ({c['se']:.2g})")
             lines.append(f"| {c.get('parameter', '`' + c['check'].split()[0] + '`')} | "
                          f"{c.get('fitted_by', c['rule'].split(';')[0].removeprefix('fitted by '))} | "
-                         f"{c['ours']} | {_verdict(c)} | {c['source'] or '-'} |")
+                         f"{c['ours']} | {m} | {_verdict(c)} | {c['source'] or '-'} |")
     rib = [k for k in ensembles if k.startswith("ribbon_")]
     if rib:
         lines += ["", "## Ribbon study: K_rib and C_rib x0.5 / x1.5 at 7000 rpm (combined landing)", "",

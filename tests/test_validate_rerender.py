@@ -151,3 +151,15 @@ def test_steady_extremes_leave_the_first_swings_out(tmp_path, monkeypatch):
     assert st["force_n"][0] == pytest.approx(-1000.0, rel=1e-3) and st["force_n"][1] == pytest.approx(1000.0, rel=1e-3)
     assert st["disp_m"][1] == pytest.approx(1e-4, rel=1e-3)
     assert V.steady_extremes({"ensembles": {}}, tmp_path) is None
+
+
+def test_a_rig_margin_has_the_fits_scatter_as_its_standard_error():
+    from rotorlanding.scenario import Bound
+
+    bound, search = Bound(0.0, 1.0, "src"), Bound(0.2, 0.95, "fit")
+    # 0.9 is nearer the search range's top (6.7 % of its width) than the bound's (10 %): the spread is read there
+    assert V.clear_se(0.9, bound, search, [0.85, 0.93]) == pytest.approx(0.04 / 0.75)
+    # on a log bound the spread is a share of the log width
+    log = Bound(1.0, 1e4, "src", True)
+    assert V.clear_se(100.0, log, None, [10.0, 1000.0]) == pytest.approx(0.25)
+    assert V.clear_se(0.5, bound, search, None) is None and V.clear_se(0.5, None, search, [0.4, 0.6]) is None
