@@ -163,3 +163,15 @@ def test_a_rig_margin_has_the_fits_scatter_as_its_standard_error():
     log = Bound(1.0, 1e4, "src", True)
     assert V.clear_se(100.0, log, None, [10.0, 1000.0]) == pytest.approx(0.25)
     assert V.clear_se(0.5, bound, search, None) is None and V.clear_se(0.5, None, search, [0.4, 0.6]) is None
+
+
+def test_the_failing_checks_table_lists_only_what_fails():
+    checks = [{"check": "Table 1: backward whirl onset", "pass": False, "provenance": "fitted (x)"},
+              {"check": "Table 2: DE vertical displacement max (7000 rpm)", "pass": True},
+              {"check": "a check without a note", "pass": False}]
+    lines = V.failure_lines(checks)
+    rows = [x for x in lines if x.startswith("| Table")]
+    assert len(rows) == 1 and rows[0].startswith("| Table 1: backward whirl onset | fitted (x) | sessions 5, 7, 32, 42")
+    assert V.failure_lines([{**c, "pass": True} for c in checks]) == []
+    # every note names a search, a mechanism, a script and a kind
+    assert all(len(v) == 4 and all(v) for v in V.FAILURE_NOTES.values())
