@@ -247,11 +247,12 @@ def placement(value: float, bound, search) -> dict:
             "on_bound": not inside or clear < ON_BOUND}
 
 
-def clear_se(value: float, bound, search, span) -> float | None:
-    """The standard error of a fitted value's ``clear`` (``placement``): half the width of ``span``, the values of the
-    designs the fit cannot tell from its best (``fit_span``), as a share of the range whose end is nearest the value
-    (the bound or the search range, log where that range is): the fit's own scatter in the units of the rig check's
-    margin. None without a span or a bound."""
+def clear_spread(value: float, bound, search, span) -> float | None:
+    """The fit's own scatter in the units of a rig check's margin (``placement``'s ``clear``): half the width of
+    ``span``, the values of the designs the fit cannot tell from its best (``fit_span``: within its noise_z standard
+    errors of the best score, so nearer two standard errors than one, and symmetric about none of them), as a share of
+    the range whose end is nearest the value (the bound or the search range, log where that range is). None without
+    a span or a bound."""
     if not span or bound is None:
         return None
     ranges = [r for r in (bound, search) if r is not None]
@@ -445,9 +446,10 @@ def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "D
         need.append(exp - band(sim, exp))
     floor, ours = (need[0] + need[1]) / 2, o["ours"]["centre"]
     text = ("Table 2's force rows read the same way. Over a steady whirl the time-mean force a catcher bearing puts on "
-            "the rotor is the rotor's static load on it (the rotor's mean acceleration is zero, and two supports split "
-            f"the weight by statics alone): our DE sleeve carries {loads[station] / 1e3:.2g} kN at rest "
-            "(`modefit.static_support_loads`)")
+            "the rotor is the rotor's static load on it (the rotor's mean acceleration is zero, and the supports split "
+            f"the weight by statics alone, the motor coupling taking its share): our DE sleeve carries "
+            f"{loads[station] / 1e3:.2g} kN with the rotor on the levitated axis "
+            "(`modefit.static_support_loads`; a little less sunk onto its catchers, where the coupling lifts more)")
     if mean:
         text += (f", and the DE's time-mean force over the representative drop's whirl (drop {mean['drop']}, from "
                  f"{mean['from_s']:.2g} s) is {mean['mean_n'] / 1e3:.2g} kN")
@@ -486,19 +488,21 @@ def force_centre_lines(orbits: list[dict], loads: dict | None, station: str = "D
 #: run, what kind of failure it is). Shown only for the checks that fail in the run (``failure_lines``)
 FAILURE_NOTES = {
     "Table 1: backward whirl onset": (
-        "sessions 5, 7, 32, 42",
-        "the whirl is seeded at the first impacts, while friction spins the race up (slip 8-20 m/s over the first "
-        "0.06 s), before any worn drag has developed",
-        "`docs/studies/onset_probe/run.sh` (session-31 rig), `onset_probe/s42_rig.sh` (this rig)",
-        "a trade-off in the rigs searched: a heavier DE end delays it (13 kg thrust disk: median 0.34 s in 10 of 16 "
-        "drops) and loses Table 2's force maximum and displacement minimum"),
+        "sessions 5, 7, 32-34, 42",
+        "the whirl is seeded at the first impacts, while friction spins the race up (session 32's centred drop on the "
+        "session-31 rig: slip 8-20 m/s over the first 0.06 s), before any worn drag has developed",
+        "`docs/studies/onset_probe/run.sh` (session-31 rig), `docs/studies/onset_probe/s42_rig.sh` (this rig)",
+        "not reached in the rigs searched: a heavier DE end moves it later but not into the band (session 42, 13 kg "
+        "thrust disk: median 0.34 s, 2 of its 10 backward drops inside), whirls backward in too few drops for the "
+        "switch (10 of 16) and loses Table 2's force maximum and displacement minimum"),
     "Table 1: DE vertical displacement max": (
         "sessions 16, 18, 42 (the frequency-only fit above)",
         "our orbit is centred on the bearing; its half-range agrees with the experiment's (the centre / half-range "
         "table), whose centre sits 0.1 mm low",
         "validate itself (the centre / half-range table)",
         "a centre the equations give a whirl only with a mean DE load of several kN (statics) or that a sensor zero "
-        "gives; no worn-bearing value moves it"),
+        "gives; no worn-fit design that passes Table 1's frequency and share reaches the band (4 of 32: "
+        "0.277-0.300 mm, session 42), the designs that do whirl in fewer drops"),
     "Table 2: DE vertical displacement max": (
         "sessions 11, 16, 33",
         "the DE journal whirls round its whole clearance, as the Fig. 39 DE checks ask; the measured one stayed low",
@@ -506,20 +510,23 @@ FAILURE_NOTES = {
         "a trade-off: the designs that reach Table 2's numbers stop whirling at the DE"),
     "Table 2: DE vertical force on the rotor min": (
         "sessions 11, 16, 23, 33, 42 (thrust ramp)",
-        "the whole-clearance whirl presses the top of the race; both force rows in band need a mean force about 5 "
-        "times our static DE load (statics, above); over the steady whirl it is in band",
-        "`docs/studies/onset_probe/static_de_load_probe.patch` (session-31 rig), `docs/studies/thrust_ramp/`",
+        "the whole-clearance whirl presses the top of the race: both force rows in band need (max + min) / 2 of at "
+        "least 1.27 kN, about 3 times ours (the force paragraph above); over the steady whirl (shown there, not "
+        "judged) the minimum would be in band and the maximum and the displacement minimum out",
+        "`docs/studies/onset_probe/static_de_load_probe.patch` (session-31 rig); `docs/studies/ensemble.py ... "
+        "axial.ramp_s=R`, stored in `docs/studies/thrust_ramp/` (this rig)",
         "as Table 2's displacement maximum, with the whirl's first swings"),
     "the ribbon influences the forward whirl frequency": (
         "sessions 37-39",
         "the ribbon holds 5-12 % of the landed bending mode's strain energy (the modal paragraph above)",
         "`docs/studies/ribbon_landing_screen.py`, `docs/studies/chain_share.py`",
-        "a trade-off: rotors within the bounds pass it with Fig. 39 (5 of 80) and then miss Table 1's backward "
-        "frequency"),
+        "a trade-off: rotors within the bounds pass it with Fig. 39 (5 of 80 on session 37's coupling-free rig) and "
+        "then miss Table 1's backward frequency"),
     "the median landing keeps the rotor inside the rig's close clearances": (
         "session 36",
-        "a rotor that does not bend whirls near 106 Hz at every speed on the paper's support chain, so Fig. 39's "
-        "rising 48-77 Hz needs a bending shaft, which swings the DE AMB stack",
+        "a rotor that does not bend has its first forward landed mode near 106 Hz at every speed on the paper's "
+        "support chain (a modal computation), so Fig. 39's rising 48-77 Hz needs a bending shaft, which swings the "
+        "DE AMB stack",
         "`docs/studies/rigid_rotor_modes.py`",
         "rests on the AMB gap's design rule (twice the catcher clearance), for which no source was found"),
 }
@@ -537,9 +544,10 @@ def failure_lines(checks: list[dict]) -> list[str]:
     if not rows:
         return []
     return ["", "## The failing checks: what was searched, the mechanism, the script", "",
-            "Our reading of each failure (docs/calibration.md, the sessions named; session 42 tabulates them). None is "
-            "shown impossible on the paper's equations: each is a trade-off within the rigs and bounds searched, or a "
-            "reading the equations give only with a load the rig does not have.", "",
+            "Our reading of each failure (docs/calibration.md, the sessions named; session 42 tabulates them; the "
+            "numbers here are those sessions', not this run's). None is shown impossible on the paper's equations: "
+            "each is a trade-off or a target not reached within the rigs and bounds searched, a reading the equations "
+            "give only with a load the rig does not have, or (the AMB gaps) a verdict resting on an unsourced rule.", "",
             "| check | fitted or predicted | searched | mechanism (our reading) | script | kind |",
             "|---|---|---|---|---|---|", *rows]
 
@@ -1045,6 +1053,9 @@ def frequency_only_backward(designs: list[dict] | None = None) -> dict | None:
     if not keep:
         return None
     best = min(keep, key=lambda d: abs(d["bw_hz"] - exp))
+    se = best.get("bw_se_hz")
+    # designs a frequency-only fit cannot rank against its pick: as near the target, within the pick's error
+    rivals = 0 if se is None else sum(abs(d["bw_hz"] - exp) <= abs(best["bw_hz"] - exp) + se for d in keep if d is not best)
     rows = {}
     table_rows = {r[0]: r for r in TABLE_ROWS}
     for key, field in FREQUENCY_ONLY_ROWS:
@@ -1056,7 +1067,9 @@ def frequency_only_backward(designs: list[dict] | None = None) -> dict | None:
                          "max": max(vals), "n": len(vals), "in_band": sum(abs(v - rexp) <= band(rsim, rexp) for v in vals),
                          "fit_in_band": best.get(field) is not None and abs(best[field] - rexp) <= band(rsim, rexp)}
     return {"designs": len(designs), "admissible": len(keep), "frequency_band_hz": bd, "frequency_hz": exp,
-            "fit": {"design": best.get("design"), "frequency_hz": best["bw_hz"],
+            "rivals_within_se": rivals,
+            "fit": {"design": best.get("design"), "frequency_hz": best["bw_hz"], "frequency_se_hz": se,
+                    "c_rib": next((v for k, v in best.items() if k.startswith("bearings.DE.c_rib")), None),
                     "worn_drag_torque_n_m": best.get("bearings.DE.worn_drag_torque"),
                     "growth_angle_rad": best.get("bearings.DE.worn_drag_growth_angle")},
             "rows": rows}
@@ -1068,18 +1081,24 @@ def frequency_only_lines(fo: dict | None) -> list[str]:
         return []
     fit = fo["fit"]
     return ["", (f"A backward calibration on the frequency alone (issue 15, point 4; the stored worn fit's "
-                 f"{fo['designs']} designs, `{STORED_FITS[WORN_FIT]}`, judged on Table 1's frequency only: backward in "
-                 f">= {CLASS_SHARE:.3g} of the drops within {fo['frequency_hz']:g} +/- {fo['frequency_band_hz']:.2g} Hz) "
-                 f"cannot reject {fo['admissible']} of them; the one nearest {fo['frequency_hz']:g} Hz, what such a fit "
-                 f"would report, is design {fit['design']} (T_w {fit['worn_drag_torque_n_m']:.3g} N m, growth angle "
-                 f"{fit['growth_angle_rad']:.3g} rad, {fit['frequency_hz']:.1f} Hz). What it predicts, none of it in "
-                 "its score: "
+                 f"{fo['designs']} designs, `{STORED_FITS[WORN_FIT]}`, judged on Table 1's frequency only) keeps "
+                 f"{fo['admissible']} of them: backward in >= {CLASS_SHARE:.3g} of the drops with the median inside "
+                 f"{fo['frequency_hz']:g} +/- {fo['frequency_band_hz']:.2g} Hz (the band, not the fit's noise). The "
+                 f"one nearest {fo['frequency_hz']:g} Hz, what such a fit would report, is design "
+                 f"{fit['design']} (T_w {fit['worn_drag_torque_n_m']:.3g} N m, growth angle "
+                 f"{fit['growth_angle_rad']:.3g} rad" + (f", C_rib {fit['c_rib']:.4g} N s/m" if fit.get("c_rib") else "")
+                 + f", {fit['frequency_hz']:.1f} Hz"
+                 + ("" if fit.get("frequency_se_hz") is None else
+                    f" +/- {fit['frequency_se_hz']:.2g}; {fo['rivals_within_se']} other admissible design"
+                    f"{'' if fo['rivals_within_se'] == 1 else 's'} within that of {fo['frequency_hz']:g} Hz, so which "
+                    "comes first is a draw of the drops") + "). What it predicts, none of it in its score: "
                  + "; ".join(f"{r['name']} {_fmt(r['fit'], r['scale'])} {r['unit']} "
                              f"({'PASS' if r['fit_in_band'] else 'FAIL'}; over the {fo['admissible']} admissible designs "
                              f"{_fmt(r['min'], r['scale'])} .. {_fmt(r['max'], r['scale'])}, {r['in_band']} of {r['n']} "
                              "in band)" for r in fo["rows"].values())
-                 + ". The table above reports the adopted worn fit, whose score held the onset as well (its onset row "
-                 "is marked fitted); its displacement rows are predictions in both (docs/calibration.md, session 18).")]
+                 + ". The table above reports the adopted worn fit, whose score included the onset (its onset row is "
+                 "marked fitted); its displacement rows are predictions in both (docs/calibration.md, sessions 18 and "
+                 "42).")]
 
 
 def switch_sides(ensembles: dict, rig=None) -> dict | None:
@@ -1226,7 +1245,7 @@ def rig_checks(rig=None) -> list[dict]:
             if vals:
                 off = sum(not placement(x, b, search)["on_bound"] for x in vals)
                 robust = {"passing": off, "n": len(vals), "holds": off == len(vals)}
-        se = clear_se(value, b, search, span)
+        spread = clear_spread(value, b, search, span)
         same = True  # the tie is one value: the rig must hold it at every tied key
         for k in tied:
             try:
@@ -1239,8 +1258,10 @@ def rig_checks(rig=None) -> list[dict]:
         checks.append({"group": "rig", "check": f"{name} inside its physical bound", "pass": inside and margin >= 0 and same,
                        "rule": f"fitted by {cal}; inside its sourced bound and its search range, >= {ON_BOUND:.0%} "
                                "of their widths from either end",
-                       "ours": where, "margin": margin, "se": se,
-                       "within_noise": margin is not None and se is not None and abs(margin) < se, "robust": robust,
+                       # the fit's spread is not a standard error (its designs lie within 2 of the best score's),
+                       # so it is shown beside the margin, and the verdict over those designs is ``robust``'s
+                       "ours": where, "margin": margin, "se": None, "spread": spread, "within_noise": False,
+                       "robust": robust,
                        "source": None if b is None else b.source})
     checks += [c for c in (screen_check(name, rig) for name in SCREENS) if c is not None]
     checks.append(rig_value_check(rig))
@@ -1791,7 +1812,12 @@ def report_markdown(result: dict) -> str:
     ev = result["evaluation"]
     ensembles = result.get("ensembles", {})
     lines = ["# Validation against the paper (generated by `rotorlanding validate --publish docs`; do not edit)", "",
-             f"rotorlanding {result['version']}; runs of {result['t_end_note']}.", "",
+             f"rotorlanding {result['version']}; runs of {result['t_end_note']}"
+             + (f"; landed at commit {result['landed_at']}" if result.get("landed_at") else "") + ".", "",
+             *([f"Rendered again from the stored run (`rotorlanding validate --report-from`, at commit "
+                f"{result['rendered_again'].get('at') or 'unknown'}), no landing: the landing and judging code are the "
+                "run's (checked by fingerprint), the report's own wording is this commit's.", ""]
+               if result.get("rendered_again") else []),
              counts_line(ev), "",
              *([f"Rig rotor: `{_shown(result['rig_overlay'])}` merged over every paper scenario (`--rig`).", ""]
                if result.get("rig_overlay") else []),
@@ -1934,13 +1960,16 @@ def report_markdown(result: dict) -> str:
                   "Bounds and their sources are written in the rig files (`[bounds]` of `scenarios/rig_rotor.toml`, "
                   "`scenarios/rig/rig.toml` and the backward scenario).", "",
                   "Margin: the value's distance from the nearer end of its bound or search range, less the on-bound "
-                  f"zone ({ON_BOUND:.0%}), as a share of that range's width; its standard error: half the spread of the "
-                  "designs the fit cannot tell from its best, in the same units (- where no fit or no spread: a value "
-                  "chosen, not fitted).", "",
-                  "| parameter | fitted by | value, bound, position | margin (s.e.) | verdict | source of the bound |",
+                  f"zone ({ON_BOUND:.0%}), as a share of that range's width. Beside it, the fit's half-spread: half the "
+                  "width of the designs the fit cannot tell from its best (within 2 standard errors of its best score), "
+                  "in the same units; not a standard error, so no verdict is flagged on it: the verdict over those "
+                  "designs is the 'hangs on the fit's pick' note (- where no fit or no spread: a value chosen, not "
+                  "fitted).", "",
+                  "| parameter | fitted by | value, bound, position | margin (fit's half-spread) | verdict | source of the bound |",
                   "|---|---|---|---|---|---|"]
         for c in rig:
-            m = "-" if c.get("margin") is None else f"{c['margin']:.2g}" + ("" if c.get("se") is None else f" ({c['se']:.2g})")
+            m = "-" if c.get("margin") is None else f"{c['margin']:.2g}" + (
+                "" if c.get("spread") is None else f" ({c['spread']:.2g})")
             lines.append(f"| {c.get('parameter', '`' + c['check'].split()[0] + '`')} | "
                          f"{c.get('fitted_by', c['rule'].split(';')[0].removeprefix('fitted by '))} | "
                          f"{c['ours']} | {m} | {_verdict(c)} | {c['source'] or '-'} |")
@@ -2378,6 +2407,7 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     # what the landings were made of: a report rendered again from this run (report_from_run) is refused once
     # a scenario gives other values
     result["scenario_fingerprints"] = scenario_fingerprints(rig)
+    result["code_fingerprint"], result["landed_at"] = code_fingerprint(), git_commit()
     result["ribbon_modal"] = ribbon_modal_shift(rig)
     result["static_support_loads_n"] = static_loads(rig)
     # the stored fits are of the rig: a --rig overlay's landings are not theirs
@@ -2405,6 +2435,45 @@ def scenario_fingerprints(rig=None) -> dict:
     if rig is not None:
         prints["rig overlay"] = scenario_fingerprint(rig)
     return prints
+
+
+#: the sources whose change leaves a stored run renderable: the report's and figures' own code, which a re-render
+#: runs as it is now (the evaluation is the run's, stored in its result)
+RENDER_SOURCES = ("validate.py", "plots.py", "cli.py")
+
+
+def code_fingerprint() -> str:
+    """A hash of the code a landing and its judging ran: every source of the package and of ``user_forces`` but the
+    report's and the figures' own (``RENDER_SOURCES``). A stored run is rendered again only on the same code."""
+    import hashlib
+
+    from . import __file__ as pkg
+
+    h = hashlib.sha256()
+    pkg_dir = Path(pkg).parent
+    files = [f for f in sorted(pkg_dir.glob("*.py")) if f.name not in RENDER_SOURCES]
+    forces = project_root() / "user_forces"
+    files += sorted(forces.glob("*.py")) if forces.is_dir() else []
+    for f in files:
+        h.update(f.name.encode() + b"\0" + f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def git_commit() -> str | None:
+    """The checkout's commit, with "+changes" when files differ from it; None outside a git checkout."""
+    import subprocess
+
+    try:
+        root = project_root()
+        head = subprocess.run(["git", "rev-parse", "--short=10", "HEAD"], cwd=root, capture_output=True, text=True,
+                              timeout=10)
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
+                               capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    if head.returncode != 0:
+        return None
+    return head.stdout.strip() + ("+changes" if dirty.returncode == 0 and dirty.stdout.strip() else "")
 
 
 #: the dicts of ``ribbon_modal`` keyed by the ribbon's stiffness factor (a float, which JSON writes as a string)
@@ -2459,15 +2528,22 @@ def report_from_run(run_dir, publish=None) -> dict:
     if changed:
         raise InputError("scenario_fingerprints", changed[0], "this scenario gives other values than the run was "
                          "landed on (" + ", ".join(changed) + "); re-run rotorlanding validate", file=src)
+    if result.get("code_fingerprint") != code_fingerprint():
+        raise InputError("code_fingerprint", result.get("code_fingerprint"), "the landing or judging code changed since "
+                         f"the run (landed at {result.get('landed_at') or 'an unknown commit'}); only the report's and "
+                         f"figures' own code ({', '.join(RENDER_SOURCES)}) may differ: re-run rotorlanding validate",
+                         file=src)
+    result["rendered_again"] = {"run": str(out), "at": git_commit()}
     try:
-        _write_report(result, out, rig, publish)
+        _write_report(result, out, rig, publish, strict=True)
     except OSError as exc:
         raise WriteError(getattr(exc, "filename", None) or out, exc) from None
     return result
 
 
-def _write_report(result: dict, out: Path, rig, publish) -> None:
-    """The figures, validation.json and the report into ``out`` (and ``publish``), each atomically."""
+def _write_report(result: dict, out: Path, rig, publish, strict: bool = False) -> None:
+    """The figures, validation.json and the report into ``out`` (and ``publish``), each atomically. ``strict`` (a
+    re-render): nothing is written or published when the result no longer gives its own report back."""
     result["figures"] = plot_validation(result, out)
     result["de_force_mean_n"] = representative_force_mean(result, out)
     result["steady_extremes"] = steady_extremes(result, out)
@@ -2481,6 +2557,9 @@ def _write_report(result: dict, out: Path, rig, publish) -> None:
     # both are at hand, and recorded, so a loss in the JSON (float keys, a numpy value) is found by the run itself
     result.pop("rerenderable", None)
     result["rerenderable"] = report_markdown(_from_json(json.dumps(result, default=float))) == md
+    if strict and not result["rerenderable"]:
+        raise InputError("rerenderable", False, "the stored result no longer gives its own report back with this "
+                         "report code; nothing written: re-run rotorlanding validate", file=str(out / "validation.json"))
     atomic_write_text(out / "validation.json", json.dumps(result, indent=2, default=float))
     atomic_write_text(out / "validation.md", md)
     if publish is not None:

@@ -337,7 +337,7 @@ def test_force_centre_reading_states_the_static_load_both_force_rows_need():
     orbits = orbit_readings(ev["checks"])
     (text,) = [x for x in force_centre_lines(orbits, {"DE_sleeve": 250.0}) if x]
     assert "(4.05 + (-1.5)) / 2 = 1.27 kN of any signal, 2.5 times ours" in text  # 1275 / 500
-    assert "ours is 0.5 kN" in text and "carries 0.25 kN at rest" in text and "time-mean force over" not in text
+    assert "ours is 0.5 kN" in text and "carries 0.25 kN with the rotor on the levitated axis" in text and "time-mean force over" not in text
     mean = {"drop": 3, "from_s": 0.1, "mean_n": 240.0}
     (text,) = [x for x in force_centre_lines(orbits, {"DE_sleeve": 250.0}, mean=mean) if x]
     assert "whirl (drop 3, from 0.1 s) is 0.24 kN" in text

@@ -106,7 +106,7 @@ def test_a_frequency_only_fit_keeps_what_the_frequency_cannot_reject():
     assert (on["fit"], on["min"], on["max"], on["in_band"], on["fit_in_band"]) == (0.38, 0.0, 0.38, 1, True)
     assert fo["rows"]["t1_disp_max"]["in_band"] == 1 and fo["rows"]["t1_disp_min"]["in_band"] == 2
     text = "\n".join(V.frequency_only_lines(fo))
-    assert "cannot reject 2 of them" in text and "design 0" in text and "onset 0.38 s (PASS" in text
+    assert "keeps 2 of them" in text and "design 0" in text and "onset 0.38 s (PASS" in text
     assert V.frequency_only_backward([_design(0, 70.0)]) is None and V.frequency_only_lines(None) == []
 
 
@@ -153,16 +153,16 @@ def test_steady_extremes_leave_the_first_swings_out(tmp_path, monkeypatch):
     assert V.steady_extremes({"ensembles": {}}, tmp_path) is None
 
 
-def test_a_rig_margin_has_the_fits_scatter_as_its_standard_error():
+def test_a_rig_margin_has_the_fits_spread_beside_it():
     from rotorlanding.scenario import Bound
 
     bound, search = Bound(0.0, 1.0, "src"), Bound(0.2, 0.95, "fit")
     # 0.9 is nearer the search range's top (6.7 % of its width) than the bound's (10 %): the spread is read there
-    assert V.clear_se(0.9, bound, search, [0.85, 0.93]) == pytest.approx(0.04 / 0.75)
+    assert V.clear_spread(0.9, bound, search, [0.85, 0.93]) == pytest.approx(0.04 / 0.75)
     # on a log bound the spread is a share of the log width
     log = Bound(1.0, 1e4, "src", True)
-    assert V.clear_se(100.0, log, None, [10.0, 1000.0]) == pytest.approx(0.25)
-    assert V.clear_se(0.5, bound, search, None) is None and V.clear_se(0.5, None, search, [0.4, 0.6]) is None
+    assert V.clear_spread(100.0, log, None, [10.0, 1000.0]) == pytest.approx(0.25)
+    assert V.clear_spread(0.5, bound, search, None) is None and V.clear_spread(0.5, None, search, [0.4, 0.6]) is None
 
 
 def test_the_failing_checks_table_lists_only_what_fails():
@@ -171,7 +171,32 @@ def test_the_failing_checks_table_lists_only_what_fails():
               {"check": "a check without a note", "pass": False}]
     lines = V.failure_lines(checks)
     rows = [x for x in lines if x.startswith("| Table")]
-    assert len(rows) == 1 and rows[0].startswith("| Table 1: backward whirl onset | fitted (x) | sessions 5, 7, 32, 42")
+    assert len(rows) == 1 and rows[0].startswith("| Table 1: backward whirl onset | fitted (x) | sessions 5, 7, 32-34, 42")
     assert V.failure_lines([{**c, "pass": True} for c in checks]) == []
     # every note names a search, a mechanism, a script and a kind
     assert all(len(v) == 4 and all(v) for v in V.FAILURE_NOTES.values())
+
+
+def test_a_run_on_other_landing_code_is_refused(tmp_path):
+    run = _store(tmp_path / "run", _result(scenario_fingerprints=V.scenario_fingerprints(), rerenderable=True,
+                                           code_fingerprint="0" * 16, landed_at="abc123"))
+    with pytest.raises(InputError, match="code_fingerprint.*landed at abc123"):
+        V.report_from_run(run)
+
+
+def test_the_code_fingerprint_leaves_out_the_report_code_only(monkeypatch):
+    fp = V.code_fingerprint()
+    assert fp == V.code_fingerprint() and len(fp) == 16
+    # the report's own sources are what a re-render may change; counting them changes the fingerprint
+    monkeypatch.setattr(V, "RENDER_SOURCES", ())
+    assert V.code_fingerprint() != fp
+
+
+def test_every_failure_note_names_a_check_validate_makes():
+    import inspect
+
+    names = {r[1] for r in V.TABLE_ROWS}
+    src = inspect.getsource(V)
+    for key in V.FAILURE_NOTES:
+        # a table row's name, or a check name written in evaluate_cases / clearance_check besides the note itself
+        assert any(n.startswith(key) for n in names) or src.count(f'"{key}') >= 2, key
