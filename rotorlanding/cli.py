@@ -260,7 +260,8 @@ def cmd_verdict(args) -> int:
 def cmd_validate(args) -> int:
     from .validate import check_cases, check_line, counts_line, report_from_run, validate
 
-    if args.report_from is not None:
+    rerender = args.report_from is not None
+    if rerender:
         # the run's own landings are rendered: options that would change them have no meaning here
         for flag, given in (("--quick", args.quick), ("--rig", args.rig is not None), ("--set", bool(args.sets)),
                             ("--out", args.out != "validation")):
@@ -269,34 +270,26 @@ def cmd_validate(args) -> int:
                                  "own landings, into RUN (and --publish)")
         if not Path(args.report_from).is_dir():
             raise InputError("--report-from", args.report_from, "must be the folder of a rotorlanding validate run")
-        if args.publish is not None and not Path(args.publish).is_dir():
-            raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
-        check_out_dir(args.report_from, "--report-from")
-        if args.publish is not None:
-            check_out_dir(args.publish, "--publish")
-        res = report_from_run(args.report_from, publish=args.publish)
-        for c in res["evaluation"]["checks"]:
-            print(check_line(c))
-        print(counts_line(res["evaluation"]).replace("**", "") + f" Report: {args.report_from}/validation.md "
-              "(rendered from the stored run, no landing)")
-        return 0
-    if args.workers < 1:
-        raise InputError("--workers", args.workers, "must be >= 1")
-    if args.rig is not None and not Path(args.rig).is_file():
-        raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
-    check_cases(args.sets or (), args.rig)
+    else:
+        if args.workers < 1:
+            raise InputError("--workers", args.workers, "must be >= 1")
+        if args.rig is not None and not Path(args.rig).is_file():
+            raise InputError("--rig", args.rig, "must be an existing rotor or rig TOML file")
+        check_cases(args.sets or (), args.rig)
     if args.publish is not None and not Path(args.publish).is_dir():
         raise InputError("--publish", args.publish, "must be an existing folder (e.g. docs)")
-    # both folders checked before some 240 landings are run into them: a bad one is one line, now
-    check_out_dir(args.out, "--out")
+    # every folder checked before some 400 landings are run into it (or a run rendered): a bad one is one line, now
+    out, option = (args.report_from, "--report-from") if rerender else (args.out, "--out")
+    check_out_dir(out, option)
     if args.publish is not None:
         check_out_dir(args.publish, "--publish")
-    res = validate(args.out, quick=args.quick, workers=args.workers, rig=args.rig, publish=args.publish,
-                   sets=args.sets)
+    res = (report_from_run(out, publish=args.publish) if rerender else
+           validate(out, quick=args.quick, workers=args.workers, rig=args.rig, publish=args.publish, sets=args.sets))
     ev = res["evaluation"]
     for c in ev["checks"]:
         print(check_line(c))
-    print(counts_line(ev).replace("**", "") + f" Report: {args.out}/validation.md")
+    print(counts_line(ev).replace("**", "") + f" Report: {out}/validation.md"
+          + (" (rendered from the stored run, no landing)" if rerender else ""))
     return 0
 
 
