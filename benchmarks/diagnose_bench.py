@@ -14,7 +14,7 @@ Kinds and what counts as right:
 
 The truth of each case lives only in this script and the results table; diagnose sees the CSV and
 the model file. Results (one row per case: case, kind, truth, named, gap before/after, right?,
-time) go to ``--out`` (markdown table) and a CSV beside it, rewritten atomically after every case;
+time) go to ``--out`` (markdown table; a folder: its diagnose_bench.md) and a CSV beside it, rewritten atomically after every case;
 a re-run skips the cases already in the CSV (``--fresh`` starts over).
 
 usage: nice -n 5 python benchmarks/diagnose_bench.py [--out benchmarks/results/diagnose_bench.md]
@@ -238,6 +238,8 @@ def main(argv=None) -> int:
                     help="diagnose's noise_members: drops of the model behind each noise gate (default diagnose's)")
     a = ap.parse_args(argv)
     out = Path(a.out)
+    if out.is_dir() or a.out.endswith("/"):  # a folder: the table goes inside it, not over it (a crash after case 1)
+        out = out / "diagnose_bench.md"
     out.parent.mkdir(parents=True, exist_ok=True)
     all_cases = cases()
     if a.list:
