@@ -48,7 +48,7 @@ from .errors import InputError
 from .features import ABSENT_FEATURE_DISTANCE, JOURNALS, extract_features, gap_points
 from .identifiability import alike_with, assess, signature
 from .measured import Measurement
-from .mechanisms import rotor_force
+from .mechanisms import housing_force, rotor_force
 from .runner import Pool, reduction_cache
 from .safeio import atomic_write_text, save_figure
 
@@ -120,10 +120,11 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
     series = evaluate(spec, t, q, v, skip=POST_NOT_NEEDED)
     chans = {}
     for b in spec.bearings:
-        force = rotor_force(series, b.name)
-        for ax, f in zip(("y", "z"), force):
+        force, housing = rotor_force(series, b.name), housing_force(series, b.name)
+        for ax, f, h in zip(("y", "z"), force, housing):
             chans[f"{b.name}_{ax}_m"] = (t, series[f"{b.name}_{ax}_m"])
             chans[f"{b.name}_force_{ax}_n"] = (t, f)
+            chans[f"{b.name}_housing_force_{ax}_n"] = (t, h)
         chans[f"{b.name}_inner_race_speed_rpm"] = (t, series[f"{b.name}_race_speed_rpm"])
     chans["rotor_speed_rpm"] = (t, series["rotor_speed_rpm"])
     chans["axial_m"] = (t, series["axial_position_m"])

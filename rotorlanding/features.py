@@ -40,6 +40,9 @@ _JOURNAL_UNITS = {
     "orbit_radius_mean_m": "m", "first_rebound_m": "m", "vertical_min_m": "m", "vertical_max_m": "m",
     "horizontal_min_m": "m", "horizontal_max_m": "m", "force_peak_n": "n", "force_z_min_n": "n",
     "force_z_max_n": "n", "race_spinup_s": "s",
+    # what a load cell between bearing and housing reads (the model's ribbon and face friction on the
+    # outer race, mechanisms.housing_force): ~9 % below the contact force's peak at an impact
+    "housing_force_peak_n": "n", "housing_force_z_min_n": "n", "housing_force_z_max_n": "n",
 }
 #: the journals whose channels give features: the whirl rows (direction, frequency, onset) are the
 #: first one's (the paper measured the DE), the per-journal rows are every journal's (issue 20,
@@ -51,7 +54,7 @@ JOURNALS = ("DE", "NDE")
 #: vertical extremes late in a rattling landing are chaos (the gate's off-centre drops move them
 #: most, docs/measured_data.md), and doubling them hid weak effects under the noise gate (4 of the
 #: diagnose tests' effects unnamed when every NDE row was compared)
-OTHER_JOURNAL_ROWS = ("vertical_min_m", "orbit_radius_mean_m", "force_peak_n", "race_spinup_s")
+OTHER_JOURNAL_ROWS = ("vertical_min_m", "orbit_radius_mean_m", "force_peak_n", "housing_force_peak_n", "race_spinup_s")
 
 #: every feature :func:`extract_features` gives, name -> unit (the name's suffix)
 FEATURE_UNITS = {
@@ -69,7 +72,7 @@ NONNEGATIVE_FEATURES = {
     "whirl_onset_s": "time after the drop", "axial_oscillation_m": "an amplitude",
     **{f"{b}_{k}": why for b in JOURNALS for k, why in (
         ("race_spinup_s", "time after the drop"), ("orbit_radius_mean_m", "a radius"),
-        ("force_peak_n", "a force magnitude"))},
+        ("force_peak_n", "a force magnitude"), ("housing_force_peak_n", "a force magnitude"))},
 }
 
 
@@ -176,19 +179,21 @@ def _journal_features(m: Measurement, *, clearance: float, bearing: str, t_drop:
         f[f"{bearing}_vertical_max_m"] = (float(zu.max()), 0.1 * c)
         f[f"{bearing}_horizontal_min_m"] = (float(yu.min()), 0.1 * c)
         f[f"{bearing}_horizontal_max_m"] = (float(yu.max()), 0.1 * c)
-    fy, fz = f"{bearing}_force_y_n", f"{bearing}_force_z_n"
-    if m.has(fy) and m.has(fz):
-        t, a = m.series(fy)
-        _, b = m.series(fz)
-        peak = float(np.max(np.hypot(a, np.interp(t, *m.series(fz)))))
-        f[f"{bearing}_force_peak_n"] = (peak, max(200.0, 0.15 * peak))
-        # vertical force range (Table 2 of the paper gives max / min of the vertical force)
-        tz = m.series(fz)[0]
-        sel = tz >= t_drop
-        if sel.any():
-            fs = max(200.0, 0.15 * peak)
-            f[f"{bearing}_force_z_min_n"] = (float(np.min(b[sel])), fs)
-            f[f"{bearing}_force_z_max_n"] = (float(np.max(b[sel])), fs)
+    # the contact force on the rotor, and what a load cell between bearing and housing reads
+    for force in ("force", "housing_force"):
+        fy, fz = f"{bearing}_{force}_y_n", f"{bearing}_{force}_z_n"
+        if m.has(fy) and m.has(fz):
+            t, a = m.series(fy)
+            _, b = m.series(fz)
+            peak = float(np.max(np.hypot(a, np.interp(t, *m.series(fz)))))
+            f[f"{bearing}_{force}_peak_n"] = (peak, max(200.0, 0.15 * peak))
+            # vertical force range (Table 2 of the paper gives max / min of the vertical force)
+            tz = m.series(fz)[0]
+            sel = tz >= t_drop
+            if sel.any():
+                fs = max(200.0, 0.15 * peak)
+                f[f"{bearing}_{force}_z_min_n"] = (float(np.min(b[sel])), fs)
+                f[f"{bearing}_{force}_z_max_n"] = (float(np.max(b[sel])), fs)
     rk = f"{bearing}_inner_race_speed_rpm"
     if m.has("rotor_speed_rpm") and m.has(rk):
         t, s = m.series("rotor_speed_rpm")
@@ -318,7 +323,7 @@ def features_from_table(table: dict, clearance: float, *, where: str = "features
                              "0.1 s", file=file)
         out[k] = (float(v), scale_of(k, float(v), clearance, max(forces) if forces and k.endswith("_n") else None))
     for low, high in (("vertical_min_m", "vertical_max_m"), ("horizontal_min_m", "horizontal_max_m"),
-                      ("force_z_min_n", "force_z_max_n")):
+                      ("force_z_min_n", "force_z_max_n"), ("housing_force_z_min_n", "housing_force_z_max_n")):
         for b in JOURNALS:
             lo, hi = f"{b}_{low}", f"{b}_{high}"
             if lo in out and hi in out and out[lo][0] > out[hi][0]:

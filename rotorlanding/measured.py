@@ -8,6 +8,9 @@ Channel names carry their unit (SI unless named): ``time_s`` and any subset of::
     rotor_speed_rpm, DE_inner_race_speed_rpm, NDE_inner_race_speed_rpm
     axial_m                                        rotor axial position
     DE_force_y_n, DE_force_z_n, NDE_force_y_n, NDE_force_z_n   contact force on the rotor
+    DE_housing_force_y_n, DE_housing_force_z_n, NDE_housing_force_y_n, NDE_housing_force_z_n
+                                                   force of the housing on the bearing (what a load
+                                                   cell between them reads), positive up as the above
 
 Channels may have different sampling (NaN where a channel has no sample), missing channels are
 fine, and the drop instant is aligned by ``time_offset_s`` (the time of the drop in the file's
@@ -30,11 +33,12 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
-from .mechanisms import rotor_force
+from .mechanisms import housing_force, rotor_force
 from .readers import read_columns, read_results_guarded, read_text
 
 CHANNELS = ("DE_y_m", "DE_z_m", "NDE_y_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm",
-            "NDE_inner_race_speed_rpm", "axial_m", "DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n")
+            "NDE_inner_race_speed_rpm", "axial_m", "DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n",
+            "DE_housing_force_y_n", "DE_housing_force_z_n", "NDE_housing_force_y_n", "NDE_housing_force_z_n")
 
 #: results.h5 series -> measurement channel (forces: contact + axial-rub force on the rotor)
 _FROM_RESULTS = {"DE_y_m": "DE_y_m", "DE_z_m": "DE_z_m", "NDE_y_m": "NDE_y_m", "NDE_z_m": "NDE_z_m",
@@ -155,6 +159,8 @@ def load_measurement(path, *, time_offset_s: float = 0.0) -> Measurement:
         for b in ("DE", "NDE"):
             if f"{b}_contact_force_y_n" in res["series"]:
                 cols[f"{b}_force_y_n"], cols[f"{b}_force_z_n"] = rotor_force(res["series"], b)
+            if f"{b}_ribbon_force_y_n" in res["series"]:
+                cols[f"{b}_housing_force_y_n"], cols[f"{b}_housing_force_z_n"] = housing_force(res["series"], b)
         m = _from_columns(cols, str(path))
     elif suffix in (".toml", ".json"):
         return _feature_table(path, suffix)

@@ -55,7 +55,9 @@ from .timoshenko import GRAVITY
 @dataclass(frozen=True)
 class Output:
     """One output series. A per-bearing series is stored as ``<bearing>_<name>``. ``on_rotor``
-    ('y' or 'z'): the series is that component of a force on the rotor at the bearing station."""
+    ('y' or 'z'): the series is that component of a force on the rotor at the bearing station.
+    ``on_housing`` ('y' or 'z'): that component of a force the housing puts on the bearing's outer
+    race, which is what a load cell between bearing and housing reads (:func:`housing_force`)."""
 
     name: str
     unit: str
@@ -63,6 +65,7 @@ class Output:
     doc: str = ""
     on_rotor: str = ""
     carried: bool = False   # a state: a coast-down chunk starts from the series' last stored row
+    on_housing: str = ""
 
 
 @dataclass(frozen=True)
@@ -348,12 +351,14 @@ def _post_ribbon(ev: Evaluation, L) -> None:
 def _post_outer_coulomb(ev: Evaluation, L) -> None:
     """Coulomb friction of the axial support on the loaded outer race, eq 30."""
     k = ev.kin
-    p = np.zeros(len(ev.t))
+    p, fy, fz = np.zeros(len(ev.t)), np.zeros(len(ev.t)), np.zeros(len(ev.t))
     for i, n_ax in enumerate(k["n_ax"]):
         if n_ax > 0:
             ovy, ovz = k["ovy"][i], k["ovz"][i]
-            hy, hz = outer_race_friction(ovy, ovz, n_ax, L.mu_d, L.v_reg)
-            p[i] = -(hy * ovy + hz * ovz)
+            fy[i], fz[i] = outer_race_friction(ovy, ovz, n_ax, L.mu_d, L.v_reg)
+            p[i] = -(fy[i] * ovy + fz[i] * ovz)
+    ev.out("housing_friction_y_n", fy)
+    ev.out("housing_friction_z_n", fz)
     ev.dissipated("outer_race_coulomb", p)
 
 
@@ -363,6 +368,9 @@ def _post_races(ev: Evaluation, L) -> None:
     r, o = b.i_race, b.i_outer
     ev.dissipated("race_damping", L.inner_race_damping * (v[:, r] ** 2 + v[:, r + 1] ** 2)
                   + L.outer_race_damping * (v[:, o] ** 2 + v[:, o + 1] ** 2))
+    # C_i and C_o act to ground: the housing carries them (0 on the rig, whose races have none)
+    ev.out("race_damping_force_y_n", -(L.inner_race_damping * v[:, r] + L.outer_race_damping * v[:, o]))
+    ev.out("race_damping_force_z_n", -(L.inner_race_damping * v[:, r + 1] + L.outer_race_damping * v[:, o + 1]))
     ev.ekin += 0.5 * L.inner_race_mass * (v[:, r] ** 2 + v[:, r + 1] ** 2) \
         + 0.5 * L.inner_race_inertia * v[:, r + 2] ** 2 + 0.5 * L.outer_race_mass * (v[:, o] ** 2 + v[:, o + 1] ** 2)
     ev.epot += GRAVITY * (L.inner_race_mass * q[:, r + 1] + L.outer_race_mass * q[:, o + 1])
@@ -407,12 +415,16 @@ REGISTRY: tuple[Mechanism, ...] = (
               doc="worn bearing's drag (docs/paper_corrections.md)"),
     Mechanism("ribbon", "bearing", ("outer_y", "outer_z"), (ribbon_force,), ("ribbon_cross_coupling",),
               ("ribbon_damping", "ribbon_cross_coupling"),
-              outputs=(Output("ribbon_force_y_n", "N", True, "ribbon force on the outer race, y"),
-                       Output("ribbon_force_z_n", "N", True, "ribbon force on the outer race, z")),
+              outputs=(Output("ribbon_force_y_n", "N", True, "ribbon force on the outer race, y", on_housing="y"),
+                       Output("ribbon_force_z_n", "N", True, "ribbon force on the outer race, z", on_housing="z")),
               post=_post_ribbon, heat=(("ribbon_damping", "outer_support"), ("ribbon_cross_coupling", "outer_support")),
               doc="ribbon damper, eqs 28-29"),
     Mechanism("outer_race_coulomb", "bearing", ("outer_y", "outer_z", "x_axial"), (outer_race_friction,),
               ("outer_race_coulomb",), ("outer_race_coulomb",), post=_post_outer_coulomb,
+              outputs=(Output("housing_friction_y_n", "N", True, "housing face friction on the outer race, y (eq 30)",
+                              on_housing="y"),
+                       Output("housing_friction_z_n", "N", True, "housing face friction on the outer race, z (eq 30)",
+                              on_housing="z")),
               heat=(("outer_race_coulomb", "outer_support"),),
               active=lambda spec, L: L.outer_coulomb, doc="outer race / housing friction, eq 30"),
     # rotor scope
@@ -425,6 +437,10 @@ REGISTRY: tuple[Mechanism, ...] = (
               ("rotor_damping",), post=_post_rotor, doc="the flexible rotor body, eq 1"),
     # bearing scope, after the rotor: the races' energies come last in each bearing's sum
     Mechanism("races", "bearing", ("race_y", "race_z", "race_phi", "outer_y", "outer_z"), (), (), ("race_damping",),
+              outputs=(Output("race_damping_force_y_n", "N", True, "races' viscous damping to the housing (C_i, C_o of "
+                              "eqs 7, 9) on the races, y", on_housing="y"),
+                       Output("race_damping_force_z_n", "N", True, "races' viscous damping to the housing on the races, z",
+                              on_housing="z")),
               post=_post_races, heat=(("race_damping", "outer_support"),), doc="races as bodies, eqs 7-9"),
     # work put in (listed and summed in this order)
     Mechanism("amb_hold", "rotor", ("lateral", "x_axial"), (), (), inputs=("amb",), post=_post_amb,
@@ -670,10 +686,23 @@ def series_units(bearing_names) -> dict[str, str]:
 
 def rotor_force(series: dict, bearing: str) -> tuple:
     """(Fy, Fz) on the rotor at a bearing: the sum of the outputs declared ``on_rotor``."""
+    return _force_sum(series, bearing, "on_rotor")
+
+
+def housing_force(series: dict, bearing: str) -> tuple:
+    """(Fy, Fz) the housing puts on a bearing's outer race (ribbon, eqs 28-29, and the face friction
+    of eq 30 when on): the sum of the outputs declared ``on_housing``. It is what a load cell between
+    bearing and housing reads, with the sign of the force on the rotor (positive up). It differs from
+    :func:`rotor_force` by the races' inertia and weight: in the mean by the races' weight
+    (tests/test_housing_force.py), at an impact's peak by several per cent (docs/measured_data.md)."""
+    return _force_sum(series, bearing, "on_housing")
+
+
+def _force_sum(series: dict, bearing: str, attr: str) -> tuple:
     parts = {"y": [], "z": []}
     for o in _bearing_outputs():
-        if o.on_rotor:
-            parts[o.on_rotor].append(series[bearing + "_" + o.name])
+        if getattr(o, attr):
+            parts[getattr(o, attr)].append(series[bearing + "_" + o.name])
     fy, fz = parts["y"][0], parts["z"][0]
     for extra in parts["y"][1:]:
         fy = fy + extra

@@ -96,10 +96,13 @@ def test_results_file_is_measured_data(tmp_path):
     assert main(["run", str(root / "scenarios" / "landing_7000rpm.toml"), "--out", str(out), "--t-end", "0.05",
                  "--quiet", "--no-plots"]) == 0
     m = load_measurement(out / "results.h5")
-    assert {"DE_y_m", "DE_z_m", "rotor_speed_rpm", "DE_force_z_n", "axial_m"} <= set(m.channels)
+    assert {"DE_y_m", "DE_z_m", "rotor_speed_rpm", "DE_force_z_n", "axial_m", "DE_housing_force_z_n",
+            "NDE_housing_force_y_n"} <= set(m.channels)
     assert detect_drop(m, C) == pytest.approx(0.0, abs=1e-3)
     f = extract_features(m, clearance=C)
     assert f["DE_vertical_min_m"][0] < -0.9 * C and f["DE_force_peak_n"][0] > 500
+    # the load cell's reading: the impact passes the race and the ribbon, so it is near the contact peak
+    assert f["DE_housing_force_peak_n"][0] == pytest.approx(f["DE_force_peak_n"][0], rel=0.25)
 
 
 def test_distances_are_bounded_by_the_direction_mismatch():
@@ -122,7 +125,8 @@ def test_table_scales_follow_the_extraction_rules():
     chans = {"rotor_speed_rpm": (t, rotor), "axial_m": (t, 1e-5 * np.sin(t))}
     for b in ("DE", "NDE"):
         chans.update({f"{b}_y_m": (t, y), f"{b}_z_m": (t, z), f"{b}_inner_race_speed_rpm": (t, race),
-                      f"{b}_force_y_n": (t, 0 * t), f"{b}_force_z_n": (t, fz)})
+                      f"{b}_force_y_n": (t, 0 * t), f"{b}_force_z_n": (t, fz),
+                      f"{b}_housing_force_y_n": (t, 0 * t), f"{b}_housing_force_z_n": (t, 0.9 * fz)})
     f = extract_features(Measurement(chans), clearance=C)
     assert set(f) == set(FEATURE_UNITS) - {"DE_first_rebound_m"}
     # every channel gives its features (issue 20, point 7): the NDE rows equal the DE rows of the same
@@ -132,9 +136,11 @@ def test_table_scales_follow_the_extraction_rules():
     assert all(f[k] == f["DE" + k[3:]] for k in nde)
     de_only = extract_features(Measurement({k: v for k, v in chans.items() if not k.startswith("NDE")}), clearance=C)
     assert de_only == {k: v for k, v in f.items() if not k.startswith("NDE")}
-    peak = f["DE_force_peak_n"][0]
+    peak, housing_peak = f["DE_force_peak_n"][0], f["DE_housing_force_peak_n"][0]
+    assert housing_peak == pytest.approx(0.9 * peak)   # each force channel has its own features and scales
     for name, (v, s) in f.items():
-        assert scale_of(name, v, C, peak if name.endswith("_n") else None) == pytest.approx(s) if s else s is None
+        ref = (housing_peak if "housing" in name else peak) if name.endswith("_n") else None
+        assert scale_of(name, v, C, ref) == pytest.approx(s) if s else s is None
 
 
 def test_paper_table_agrees_with_validate_paper(tmp_path):
