@@ -104,9 +104,16 @@ def cases() -> list[dict]:
     return out
 
 
-def sensor(case_index: int, case: dict) -> dict:
+#: the load cells' channels (``--load-cells``): the force of the housing on each catcher bearing, what
+#: a load cell between them reads (the paper's rig had them, its Fig. 10 'LC'; mechanisms.housing_force)
+LOAD_CELLS = ("DE_housing_force_y_n", "DE_housing_force_z_n", "NDE_housing_force_y_n", "NDE_housing_force_z_n")
+
+
+def sensor(case_index: int, case: dict, load_cells_n: float = 0.0) -> dict:
     """The logger of a case, drawn from its own seed: rate, phase (in write_record), pre-trigger,
-    drop instant, per-channel noise, a missing NDE channel now and then."""
+    drop instant, per-channel noise, a missing NDE channel now and then; with ``load_cells_n`` > 0
+    also the four load-cell channels, white noise of that many newtons times 0.5-2 per channel
+    (drawn from a seed of their own, so the other channels are those of the bench without them)."""
     from sensor_model import CHANNELS
 
     rng = np.random.default_rng(1000 + case_index)
@@ -116,9 +123,14 @@ def sensor(case_index: int, case: dict) -> dict:
     channels = list(CHANNELS)
     if rng.uniform() < 0.3:
         channels.remove(str(rng.choice(["NDE_y_m", "NDE_z_m"])))
-    return {"fs_hz": float(rng.choice([2000.0, 4000.0, 5000.0, 10000.0])), "pre_trigger_s": float(rng.uniform(0.05, 0.5)),
-            "drop_at_s": float(rng.uniform(0.5, 10.0)), "noise_by_channel": noise, "channels": channels,
-            "seed": 2000 + case_index}
+    out = {"fs_hz": float(rng.choice([2000.0, 4000.0, 5000.0, 10000.0])), "pre_trigger_s": float(rng.uniform(0.05, 0.5)),
+           "drop_at_s": float(rng.uniform(0.5, 10.0)), "noise_by_channel": noise, "channels": channels,
+           "seed": 2000 + case_index}
+    if load_cells_n > 0:
+        frng = np.random.default_rng(9000 + case_index)   # as docs/studies/diagnose_information.py FORCES=N
+        out["channels"] = channels + list(LOAD_CELLS)
+        out["noise_by_channel"] = {**noise, **{ch: load_cells_n * float(frng.uniform(0.5, 2.0)) for ch in LOAD_CELLS}}
+    return out
 
 
 def judge(case: dict, res: dict) -> bool:
@@ -134,7 +146,7 @@ def judge(case: dict, res: dict) -> bool:
 
 
 def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
-             directed: bool = False, noise_members: int | None = None) -> dict:
+             directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0) -> dict:
     from sensor_model import C, THRUST, known_rig_model, write_record
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
@@ -142,7 +154,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
 
     model = known_rig_model(tmp / f"{case['case']}.toml", case["off"], extra=THRUST if case["thrust"] else "")
     rec = tmp / f"{case['case']}.csv"
-    sen = sensor(i, case)
+    sen = sensor(i, case, load_cells_n)
     if repeats == 1:
         # one landing, from a random point within the AMB's 5 um position error as a rig drops (until
         # session 21 exactly centred: the data then differed from the centred model by sensor noise
@@ -236,6 +248,9 @@ def main(argv=None) -> int:
                     help="diagnose's directed test inside the noise gate (diagnose_run._directed_test)")
     ap.add_argument("--noise-members", type=int, default=None,
                     help="diagnose's noise_members: drops of the model behind each noise gate (default diagnose's)")
+    ap.add_argument("--load-cells", type=float, default=0.0, metavar="N",
+                    help="add the four load-cell channels (the housing's force on each bearing) with white noise of N "
+                         "newtons times 0.5-2 per channel (default 0: displacements and speeds only)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     if out.is_dir() or a.out.endswith("/"):  # a folder: the table goes inside it, not over it (a crash after case 1)
@@ -257,7 +272,7 @@ def main(argv=None) -> int:
                 continue
             try:
                 row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats,
-                               a.directed, a.noise_members)
+                               a.directed, a.noise_members, a.load_cells)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],

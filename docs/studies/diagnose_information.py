@@ -13,7 +13,8 @@ the four largest whitened feature distances; one JSON per case in docs/studies/d
 usage: RECORDS=4 [FORCES=N] python docs/studies/diagnose_information.py CASE[,CASE...]|all [FLOOR] > out.txt
 FORCES=N (session 42) adds the four bearing force channels to every record, as the paper's rig had them
 (force sensors at the bearings: its Fig. 33-34 plot DE and NDE forces), with white noise of N newtons
-times the case's per-channel factor (0.5-2); the JSONs then end in _F.json.
+times the case's per-channel factor (0.5-2); the JSONs then end in _F.json. With FORCE_KIND=housing (session 43)
+the four channels are the housing's (a load cell's reading, mechanisms.housing_force) and the JSONs end in _H.json.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -27,7 +28,11 @@ from rotorlanding.ensemble import random_drop_offset, drop_offsets, DROP_RADIUS_
 from rotorlanding.features import ensemble_features, gap_points, scale_of, WHIRL_SHARES
 R = int(__import__("os").environ.get("RECORDS", "4"))
 FORCE_NOISE_N = float(__import__("os").environ.get("FORCES", "0"))  # 0: no force channels (session 19's records)
-FORCE_CHANNELS = ("DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n")
+# FORCE_KIND=housing (session 43): the channels a load cell between bearing and housing gives
+# (mechanisms.housing_force) instead of the contact force on the rotor, which no rig sensor reads
+HOUSING = __import__("os").environ.get("FORCE_KIND", "contact") == "housing"
+FORCE_CHANNELS = (("DE_housing_force_y_n", "DE_housing_force_z_n", "NDE_housing_force_y_n", "NDE_housing_force_z_n")
+                  if HOUSING else ("DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n"))
 FLOOR = 0.1  # whitened scale never below this share of the fixed scale (main: the second argument)
 OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
 
@@ -120,7 +125,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{"_F" if FORCE_NOISE_N > 0 else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
