@@ -313,13 +313,35 @@ def studies(rig=None) -> dict:
         if sets is not None and rig is None:  # the held-out fits are of the rig rotor
             fname, base = CASES[f"forward_{rpm}"]
             out[f"heldout_{rpm}"] = (fname, list(base) + sets)
+    sets = frequency_only_sets(None if rig is not None else frequency_only_backward())
+    if sets:
+        fname, base = CASES["backward_whirl"]
+        out[FREQUENCY_ONLY_CASE] = (fname, list(base) + sets)
     return out
+
+
+#: the backward landing on the design a frequency-only fit would report (:func:`frequency_only_backward`), landed
+#: on validate's own drops so that its predictions carry medians and standard errors as the table's rows do
+FREQUENCY_ONLY_CASE = "frequency_only_pick"
+
+
+def frequency_only_sets(fo: dict | None) -> list[str]:
+    """The ``--set`` values of the frequency-only pick's design (its worn drag and, tied at both bearings, its
+    ribbon damping); [] without one."""
+    if not fo:
+        return []
+    f = fo["fit"]
+    if f.get("worn_drag_torque_n_m") is None or f.get("growth_angle_rad") is None:
+        return []
+    return ([f"bearings.DE.worn_drag_torque={float(f['worn_drag_torque_n_m'])!r}",
+             f"bearings.DE.worn_drag_growth_angle={float(f['growth_angle_rad'])!r}"]
+            + ([f"bearings.{b}.c_rib={float(f['c_rib'])!r}" for b in ("DE", "NDE")] if f.get("c_rib") else []))
 
 
 def _ensemble_jobs(out: Path, t_end, rig) -> list[tuple]:
     jobs = []
     plan = {key: (CASES[key], n) for key, n in ENSEMBLE.items()}
-    plan.update({key: (case, SWITCH_DROPS if key == "backward_mu_0.15" else
+    plan.update({key: (case, SWITCH_DROPS if key in ("backward_mu_0.15", FREQUENCY_ONLY_CASE) else
                        HELDOUT_DROPS if key.startswith("heldout_") else STUDY_DROPS)
                  for key, case in studies(rig).items()})
     for key, ((fname, sets), n) in plan.items():
@@ -1079,6 +1101,27 @@ def frequency_only_backward(designs: list[dict] | None = None) -> dict | None:
             "rows": rows}
 
 
+def frequency_only_landed(w: dict | None) -> dict | None:
+    """The frequency-only pick landed again on validate's drops (``w``: its ensemble statistics): its share
+    backward and frequency, and each predicted row's median, standard error, margin (band minus error) and verdict.
+    None without the ensemble."""
+    if not w:
+        return None
+    table_rows = {r[0]: r for r in TABLE_ROWS}
+    n = sum(w["counts"].values())
+    f_sim, f_exp = _paper_values("table1", "frequency_hz")
+    out = {"n": n, "backward": int(w["counts"].get("backward", 0)), "frequency_hz": w.get("frequency_hz"),
+           "frequency_se_hz": w.get("frequency_se_hz"), "frequency_in_band": w.get("frequency_hz") is not None
+           and abs(w["frequency_hz"] - f_exp) <= band(f_sim, f_exp), "rows": {}}
+    for key, _ in FREQUENCY_ONLY_ROWS:
+        r = table_rows[key]
+        v, se = _value(w, r[3], r[4])
+        rsim, rexp = _paper_values(r[3], r[4])
+        margin = None if v is None else band(rsim, rexp) - abs(v - rexp)
+        out["rows"][key] = {"value": v, "se": se, "margin": margin, "pass": margin is not None and margin >= 0}
+    return out
+
+
 def frequency_only_lines(fo: dict | None) -> list[str]:
     """The report's paragraph on :func:`frequency_only_backward`; nothing without it."""
     if not fo:
@@ -1095,14 +1138,49 @@ def frequency_only_lines(fo: dict | None) -> list[str]:
                  + ("" if fit.get("frequency_se_hz") is None else
                     f" +/- {fit['frequency_se_hz']:.2g}; {fo['rivals_within_se']} other admissible design"
                     f"{'' if fo['rivals_within_se'] == 1 else 's'} within that of {fo['frequency_hz']:g} Hz, so which "
-                    "comes first is a draw of the drops") + "). What it predicts, none of it in its score: "
-                 + "; ".join(f"{r['name']} {_fmt(r['fit'], r['scale'])} {r['unit']} "
-                             f"({'PASS' if r['fit_in_band'] else 'FAIL'}; over the {fo['admissible']} admissible designs "
-                             f"{_fmt(r['min'], r['scale'])} .. {_fmt(r['max'], r['scale'])}, {r['in_band']} of {r['n']} "
-                             "in band)" for r in fo["rows"].values())
-                 + ". The table above reports the adopted worn fit, whose score included the onset (its onset row is "
+                    "comes first is a draw of the drops") + "). "
+                 + _frequency_only_predictions(fo)
+                 + " The table above reports the adopted worn fit, whose score included the onset (its onset row is "
                  "marked fitted); its displacement rows are predictions in both (docs/calibration.md, sessions 18 and "
                  "42).")]
+
+
+def _frequency_only_predictions(fo: dict) -> str:
+    """The frequency-only pick's predictions: judged on its landing on validate's drops (``fo['landed']``, each
+    with its margin and standard error, as the table's rows), beside the fit's stored numbers; without that
+    landing the stored numbers only, read against the band and not judged."""
+    landed = fo.get("landed")
+
+    def stored(r):
+        return (f"the fit's stored run {_fmt(r['fit'], r['scale'])}; over the {fo['admissible']} admissible designs "
+                f"{_fmt(r['min'], r['scale'])} .. {_fmt(r['max'], r['scale'])}, {r['in_band']} of {r['n']} in band")
+
+    if not landed:
+        return ("What it predicts, none of it in its score (the fit's stored numbers, not judged here: validate "
+                "lands the pick again to judge them): "
+                + "; ".join(f"{r['name']} {_fmt(r['fit'], r['scale'])} {r['unit']} "
+                            f"({'in' if r['fit_in_band'] else 'out of'} band; {stored(r)})" for r in fo["rows"].values())
+                + ".")
+
+    def verdict(key, r):
+        lr = landed["rows"].get(key) or {}
+        if lr.get("value") is None:
+            return f"{r['name']}: none on the landing ({stored(r)})"
+        se = lr.get("se")
+        noise = se is not None and abs(lr["margin"]) < se
+        return (f"{r['name']} {_fmt(lr['value'], r['scale'])}"
+                + ("" if se is None else f" +/- {_fmt(se, r['scale'])}") + f" {r['unit']}, margin "
+                f"{_fmt(lr['margin'], r['scale'])} ({'-' if se is None else _fmt(se, r['scale'])}) "
+                f"{'PASS' if lr['pass'] else 'FAIL'}{' (within noise)' if noise else ''} ({stored(r)})")
+
+    f = landed.get("frequency_hz")
+    return (f"Landed again on this run's {landed['n']} drops (case `{FREQUENCY_ONLY_CASE}`): backward in "
+            f"{landed['backward']} of {landed['n']}"
+            + ("" if f is None else f", {f:.1f} Hz" + ("" if landed.get("frequency_se_hz") is None else
+                                                      f" +/- {landed['frequency_se_hz']:.2g}")
+               + ("" if landed["frequency_in_band"] else " (outside Table 1's band)"))
+            + ". What it predicts, none of it in its score (margin: band minus error, its standard error in "
+            "brackets): " + "; ".join(verdict(k, r) for k, r in fo["rows"].items()) + ".")
 
 
 def switch_sides(ensembles: dict, rig=None) -> dict | None:
@@ -1262,9 +1340,11 @@ def rig_checks(rig=None) -> list[dict]:
         checks.append({"group": "rig", "check": f"{name} inside its physical bound", "pass": inside and margin >= 0 and same,
                        "rule": f"fitted by {cal}; inside its sourced bound and its search range, >= {ON_BOUND:.0%} "
                                "of their widths from either end",
-                       # the fit's spread is not a standard error (its designs lie within 2 of the best score's),
-                       # so it is shown beside the margin, and the verdict over those designs is ``robust``'s
+                       # the fit's spread is not a standard error (its designs lie within 2 of the best score's):
+                       # it is the margin's uncertainty as the fit resolves the value, so a margin under it is
+                       # flagged (``within_spread``), and the verdict over those designs is ``robust``'s
                        "ours": where, "margin": margin, "se": None, "spread": spread, "within_noise": False,
+                       "within_spread": spread is not None and abs(margin) < spread,
                        "robust": robust,
                        "source": None if b is None else b.source})
     checks += [c for c in (screen_check(name, rig) for name in SCREENS) if c is not None]
@@ -1461,8 +1541,12 @@ def alignment_summary(path=None, scenarios=None) -> dict | None:
         for oz in sorted(set(bw) & set(calm), reverse=True):
             n, n_calm = int(bw[oz]["drops"]), int(calm[oz]["drops"])
             b_n, c_n = int(bw[oz]["counts"].get("backward", 0)), int(calm[oz]["counts"].get("none", 0))
-            switch.append({"offset_z_m": oz, "backward": b_n, "calm": c_n, "n": n, "frequency_hz": bw[oz]["de_frequency_hz"],
-                           "pass": b_n >= class_need(n) and c_n >= class_need(n_calm)})
+            # the switch's margin is its weaker side's, in drops, with that side's binomial error (as the causes')
+            sides = [_class_verdict({"backward": b_n}, n, "backward"), _class_verdict({"none": c_n}, n_calm, "none")]
+            weak = min(sides, key=lambda v: v["margin"])
+            switch.append({"offset_z_m": oz, "backward": b_n, "calm": c_n, "n": n, "n_calm": n_calm,
+                           "frequency_hz": bw[oz]["de_frequency_hz"], "pass": all(v["pass"] for v in sides),
+                           "margin": weak["margin"], "se": weak["se"]})
         other = []
         for r in sorted(recs, key=lambda r: -r["offset_z_m"]):
             if r["case"] == "backward_whirl_landing":
@@ -1493,9 +1577,12 @@ def alignment_lines(al: dict | None, rig_offset_z: float = 0.0) -> list[str]:
             f"motor's axis at `rotor.supports.2.offset_z` = {rig_offset_z * 1e3:+.3g} mm from the bearings' straight "
             "axis. Moved over its alignment bound (`docs/studies/coupling_alignment.py`, stored, not re-run here; "
             "docs/calibration.md, session 41), Table 1's switch (drops backward at mu_rad 0.3 / calm at 0.15, by this "
-            "check's rule): "
+            "check's rule; the margin is the weaker side's, in drops, its binomial standard error in brackets): "
             + "; ".join(f"{s['offset_z_m'] * 1e3:+.3g} mm {s['backward']} / {s['calm']} of {s['n']}"
-                        + freq(s["frequency_hz"]) + (" PASS" if s["pass"] else " FAIL") for s in sw))
+                        + freq(s["frequency_hz"]) + (" PASS" if s["pass"] else " FAIL")
+                        + ("" if s.get("margin") is None else
+                           f" ({s['margin']:+d} drops ({s['se']:.2g}){', within noise' if abs(s['margin']) < s['se'] else ''})")
+                        for s in sw))
     i = min(range(len(sw)), key=lambda j: abs(sw[j]["offset_z_m"] - rig_offset_z))
     if sw[i]["pass"]:
         lo = hi = i
@@ -1622,6 +1709,7 @@ def shape_lines(checks: list[dict]) -> list[str]:
 def _verdict(c: dict) -> str:
     rb = c.get("robust")
     return ("PASS" if c["pass"] else "FAIL") + (" (within noise: margin < s.e.)" if c.get("within_noise") else "") \
+        + (" (within the fit's spread: margin < its half-spread)" if c.get("within_spread") else "") \
         + (" (each whirl shape: see below)" if c.get("split_robust") else "") \
         + (f" (hangs on the fit's pick: {rb['passing']} of {rb['n']} designs within its noise pass)"
            if rb and not rb["holds"] else "")
@@ -1703,8 +1791,10 @@ def counts_line(ev: dict) -> str:
         parts.append(f"the landed rotor inside the rig's close clearances (AMB air gaps): "
                      f"**{g['clearance']['passed']} of {g['clearance']['total']}**")
     noisy = sum(bool(c.get("within_noise")) for c in ev["checks"])
+    spread = sum(bool(c.get("within_spread")) for c in ev["checks"])
     return "; ".join(parts) + f". {ev['passed']} of {ev['total']} checks pass in all" + \
-        (f"; {noisy} verdict(s) have a margin smaller than their standard error (flagged)." if noisy else ".")
+        (f"; {noisy} verdict(s) have a margin smaller than their standard error (flagged)" if noisy else "") + \
+        (f"; {spread} rig verdict(s) a margin smaller than their fit's half-spread (flagged)" if spread else "") + "."
 
 
 #: the landings whose drops the close-clearance check judges: the paper's five and the two the cause
@@ -1966,9 +2056,10 @@ def report_markdown(result: dict) -> str:
                   "Margin: the value's distance from the nearer end of its bound or search range, less the on-bound "
                   f"zone ({ON_BOUND:.0%}), as a share of that range's width. Beside it, the fit's half-spread: half the "
                   "width of the designs the fit cannot tell from its best (within 2 standard errors of its best score), "
-                  "in the same units; not a standard error, so no verdict is flagged on it: the verdict over those "
-                  "designs is the 'hangs on the fit's pick' note (- where no fit or no spread: a value chosen, not "
-                  "fitted).", "",
+                  "in the same units. It is not a standard error (those designs lie within 2 standard errors of the "
+                  "best score, so it is wider than one would be): it is the value's uncertainty as the fit resolves it, "
+                  "so a margin under it is flagged 'within the fit's spread', and the verdict over those designs is "
+                  "the 'hangs on the fit's pick' note (- where no fit or no spread: a value chosen, not fitted).", "",
                   "| parameter | fitted by | value, bound, position | margin (fit's half-spread) | verdict | source of the bound |",
                   "|---|---|---|---|---|---|"]
         for c in rig:
@@ -2417,6 +2508,8 @@ def validate(out_dir, *, quick: bool = False, workers: int = 2, publish=None, ri
     # the stored fits are of the rig: a --rig overlay's landings are not theirs
     result["rows_over_fit"] = {} if rig is not None else rows_over_fit()
     result["frequency_only"] = None if rig is not None else frequency_only_backward()
+    if result["frequency_only"]:
+        result["frequency_only"]["landed"] = frequency_only_landed(ensembles.get(FREQUENCY_ONLY_CASE))
     result["switch_sides"] = switch_sides(ensembles, rig)
     result["causes_over_fit"] = {} if rig is not None else causes_over_fit()
     result["evaluation"] = evaluate_cases(summaries, ensembles, rig_checks(rig), overlay=rig,

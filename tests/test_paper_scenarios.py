@@ -848,6 +848,9 @@ def test_alignment_summary_judges_the_switch_per_offset_and_drops_a_stale_study(
     text = alignment_lines(al)[1]
     assert "+0.05 mm 16 / 14 of 16 (60.0 Hz, outside Table 1's band) PASS" in text
     assert "+0 mm 14 / 16 of 16 (49.5 Hz) PASS" in text and "-0.1 mm 16 / 13 of 16 (49.0 Hz) FAIL" in text
+    # each verdict with its margin, the weaker side's in drops, and that side's binomial standard error
+    assert "PASS (+0 drops (1.3), within noise)" in text and "FAIL (-1 drops (1.6), within noise)" in text
+    assert [(s["margin"], round(s["se"], 2)) for s in al["switch"]][:2] == [(0, 1.32), (0, 1.32)]
     assert "holds from +0 to +0.05 mm" in text  # the pass at -0.2 mm lies beyond a fail: not in the range
     assert "forward in 7 of 8 drops" in text
     assert "fails at the offset nearest" in alignment_lines(al, rig_offset_z=-1e-4)[1]

@@ -106,8 +106,27 @@ def test_a_frequency_only_fit_keeps_what_the_frequency_cannot_reject():
     assert (on["fit"], on["min"], on["max"], on["in_band"], on["fit_in_band"]) == (0.38, 0.0, 0.38, 1, True)
     assert fo["rows"]["t1_disp_max"]["in_band"] == 1 and fo["rows"]["t1_disp_min"]["in_band"] == 2
     text = "\n".join(V.frequency_only_lines(fo))
-    assert "keeps 2 of them" in text and "design 0" in text and "onset 0.38 s (PASS" in text
+    # the fit's stored numbers are read against the band, not judged: they carry no standard error
+    assert "keeps 2 of them" in text and "design 0" in text and "onset 0.38 s (in band" in text
+    assert "PASS" not in text and "FAIL" not in text
     assert V.frequency_only_backward([_design(0, 70.0)]) is None and V.frequency_only_lines(None) == []
+    # the pick, landed again (validate's case): its --set values, and its rows judged with margins and errors
+    assert V.frequency_only_sets(fo) == ["bearings.DE.worn_drag_torque=2.0", "bearings.DE.worn_drag_growth_angle=100.0"]
+    assert V.frequency_only_sets(None) == []
+    w = {"counts": {"backward": 30, "none": 2}, "direction": "backward", "frequency_hz": 48.5, "frequency_se_hz": 1.0,
+         "onset_s": 0.0, "onset_se_s": 0.03, "v_disp_range_m": [-3.0e-4, 2.8e-4], "v_disp_range_se_m": [4e-6, 8e-6]}
+    landed = V.frequency_only_landed(w)
+    assert (landed["n"], landed["backward"], landed["frequency_in_band"]) == (32, 30, True)
+    rows = landed["rows"]
+    assert rows["t1_onset"]["margin"] == pytest.approx(0.04 - 0.4) and not rows["t1_onset"]["pass"]
+    assert rows["t1_disp_max"]["margin"] == pytest.approx(0.05e-3 - 0.08e-3) and not rows["t1_disp_max"]["pass"]
+    assert rows["t1_disp_min"]["margin"] == pytest.approx(0.12e-3 - 0.1e-3) and rows["t1_disp_min"]["pass"]
+    assert rows["t1_disp_min"]["se"] == 4e-6
+    text = "\n".join(V.frequency_only_lines({**fo, "landed": landed}))
+    assert "backward in 30 of 32, 48.5 Hz" in text
+    assert "onset 0 +/- 0.03 s, margin -0.36 (0.03) FAIL" in text
+    assert "displacement min -0.3 +/- 0.004 mm, margin 0.02 (0.004) PASS" in text
+    assert V.frequency_only_landed(None) is None
 
 
 def test_the_switch_reading_says_what_holds_the_calm_race():
