@@ -12,6 +12,7 @@ import pytest
 from rotorlanding import mechanisms as mech
 from rotorlanding.landing import build_spec
 from rotorlanding.scenario import load_scenario
+from test_mechanisms import _states
 
 ROOT = Path(__file__).resolve().parents[1]
 FORWARD = ROOT / "scenarios" / "paper" / "forward_whirl_landing.toml"
@@ -19,18 +20,13 @@ NO_WHIRL = ROOT / "scenarios" / "paper" / "no_whirl_landing.toml"
 G = mech.GRAVITY
 
 
-def _pressed_states(spec, n=40, seed=5):
-    """Random states around the static start: journals in their races, the rotor on its thrust face,
-    the races moving (so friction and damping have a direction)."""
-    rng = np.random.default_rng(seed)
-    q0, v0 = spec.initial_state()
-    q = q0 + 2e-5 * rng.standard_normal((n, spec.n))
-    v = v0 + 1e-2 * rng.standard_normal((n, spec.n))
-    for b in spec.bearings:
-        q[:, b.i_station + 1] -= b.laws.clearance * rng.uniform(0.5, 1.2, n)
+def _pressed_states(spec):
+    """test_mechanisms' random states (journals in their races, the races moving, so friction and damping
+    have a direction), with the rotor on its thrust face."""
+    t, q, v = _states(spec, seed=5)
     a = spec.scenario.axial
     q[:, spec.i_axial] = a.cl_ax + 0.5 * a.delta_m
-    return np.linspace(0.0, 1e-3 * (n - 1), n), q, v
+    return t, q, v
 
 
 @pytest.mark.parametrize("sets", [[], ["effects.outer_race_coulomb=false"],
