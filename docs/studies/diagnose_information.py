@@ -15,6 +15,10 @@ FORCES=N (session 42) adds the four bearing force channels to every record, as t
 (force sensors at the bearings: its Fig. 33-34 plot DE and NDE forces), with white noise of N newtons
 times the case's per-channel factor (0.5-2); the JSONs then end in _F.json. With FORCE_KIND=housing (session 43)
 the four channels are the housing's (a load cell's reading, mechanisms.housing_force) and the JSONs end in _H.json.
+With GATE=diagnose (session 44) the 4 gate members are drawn as diagnose draws them (_noise_gate): each the
+mean of R drops from random points of the 5 um disc (the same seed), sampled at the records' logger rate with a
+random phase; the model's own R drops stay on the circle. The JSONs then end in _D.json;
+with ROWS=data as well (the members count only the records' features) in _Dr.json.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -33,6 +37,11 @@ FORCE_NOISE_N = float(__import__("os").environ.get("FORCES", "0"))  # 0: no forc
 HOUSING = __import__("os").environ.get("FORCE_KIND", "contact") == "housing"
 FORCE_CHANNELS = (("DE_housing_force_y_n", "DE_housing_force_z_n", "NDE_housing_force_y_n", "NDE_housing_force_z_n")
                   if HOUSING else ("DE_force_y_n", "DE_force_z_n", "NDE_force_y_n", "NDE_force_z_n"))
+# GATE=diagnose (session 44): diagnose's own members (random points of the disc, the logger's rate), not circles
+DIAGNOSE_GATE = __import__("os").environ.get("GATE", "circle") == "diagnose"
+# ROWS=data (session 44): a gate member counts only the features the records have (diagnose's members counted
+# every feature the model has, the contact-force rows included, which no record carries)
+DATA_ROWS = __import__("os").environ.get("ROWS", "model") == "data"
 FLOOR = 0.1  # whitened scale never below this share of the fixed scale (main: the second argument)
 OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
 
@@ -53,11 +62,18 @@ def whiten(feats, sig):
 def analyse(sim, meas_mean, extra, noise):
     own = sim.features([extra + o for o in drop_offsets(R)], single=True)
     own = [o[0] for o in own]
-    groups = [drop_offsets(R, DROP_RADIUS_M, (g + 1) / (R + 1)) for g in range(4)]
+    if DIAGNOSE_GATE:
+        from rotorlanding.diagnose_run import MEMBER_SEED
+        mrng = np.random.default_rng(MEMBER_SEED + 1000 * 4 + R)
+        groups = [[random_drop_offset(mrng, DROP_RADIUS_M) for _ in range(R)] for _ in range(4)]
+    else:
+        groups = [drop_offsets(R, DROP_RADIUS_M, (g + 1) / (R + 1)) for g in range(4)]
     flat = sim.features([extra + o for grp in groups for o in grp], noise=noise, single=True)
     flat = [f[0] for f in flat]
     model = _journal_rows(ensemble_features(own), DEFAULT_JOURNALS)
     members = [_journal_rows(ensemble_features(flat[g * R:(g + 1) * R]), DEFAULT_JOURNALS) for g in range(4)]
+    if DATA_ROWS:
+        members = [{k: v for k, v in m.items() if k in meas_mean} for m in members]
     singles = [_journal_rows(f, DEFAULT_JOURNALS) for f in own + flat]
     sig = {}
     for k in model:
@@ -105,6 +121,9 @@ def main(argv):
                          fs_hz=sen['fs_hz'], pre_trigger_s=sen['pre_trigger_s'], drop_at_s=float(rng.uniform(0.5, 10.0)),
                          channels=sen['channels'], noise_by_channel=sen['noise_by_channel'])
         clearance, _, meas, info = records_for_diagnosis(model, recs, [])
+        if DIAGNOSE_GATE and info.get('sampling_rate_hz') and info.get('sensor_noise'):
+            from rotorlanding.diagnose_run import RATE_KEY
+            info['sensor_noise'] = {**info['sensor_noise'], RATE_KEY: info['sampling_rate_hz']}
         mm = _journal_rows(ensemble_features(meas.features), DEFAULT_JOURNALS)
         sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=R, records=R)
         try:
@@ -125,7 +144,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
