@@ -14,7 +14,8 @@ that the package attribute ``rotorlanding.diagnose`` is the function.
      :class:`Repeated`) are compared as the means of their features against the model's ensemble
      of as many drops;
   b. the noise gate from the data (:func:`_noise_gate`): the model dropped from a 5 um disc with
-     the record's own sensor noise (:func:`sensor_noise`), the 95 % prediction bound of one more
+     the record's own sensor noise (:func:`sensor_noise`), sampled at its rate and made of its
+     channels (so a member's gap has the record's rows), the 95 % prediction bound of one more
      member's gap (with repeated landings the members are ensembles of as many drops as there
      are records, so the gate has the statistics of the data's means); a user-given drop instant is checked against the detected one;
   c. candidates: each effect the model lacks (switched on, its parameter calibrated within bounds
@@ -131,6 +132,15 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
     if noise:
         noise = dict(noise)
         fs = noise.pop(RATE_KEY, None)
+        channels = noise.pop(CHANNELS_KEY, None)
+        if channels:
+            # a drop taken as a record (a noise gate's member) has the record's channels only: until
+            # session 44 it had every channel the model gives, so its gap counted
+            # rows the record's gap cannot have (the contact force, which no sensor reads; an NDE
+            # channel the record lacks). Against an unchanged gap that inflated the gate: 0.510
+            # against 0.206 on the bench's strong contact damping, 4 records (the undamped model's
+            # contact-force peak scatters 0.32 of its scale between drops, 0.07 with the damping)
+            chans = {k: v for k, v in chans.items() if k in channels}
         rng = np.random.default_rng(seed)
         if fs:
             # sampled as a record is: at the logger's rate, with a random phase against the drop and
@@ -253,6 +263,8 @@ OFFSET_TOLERANCE_S = 2e-3
 
 #: the key of a noise dict that carries the record's sampling rate (Hz), not a channel
 RATE_KEY = "_sampling_rate_hz"
+#: the record's channel names, beside its noise: a member drop is made of those channels only
+CHANNELS_KEY = "_channels"
 
 
 def record_rate(m: Measurement) -> float | None:
@@ -318,6 +330,7 @@ def measured_for_diagnosis(scenario_path, measured_path, sets: list[str], time_o
         t_drop = detected if time_offset_s is None else 0.0
         info["sensor_noise"] = sensor_noise(m)
         info["sampling_rate_hz"] = record_rate(m)
+        info["channels"] = sorted(m.channels)
         if time_offset_s is not None and detected is not None:
             # the drop the data show, in the file's clock, against the one the user gave
             info["time_offset"] = {"given_s": time_offset_s, "detected_s": time_offset_s + detected,
@@ -340,7 +353,7 @@ def records_for_diagnosis(scenario_path, paths, sets: list[str], option: str = "
     records that have it). A feature table among them is one InputError naming it."""
     from pathlib import Path
 
-    feats, noises, rates, first = [], [], [], None
+    feats, noises, rates, channels, first = [], [], [], set(), None
     seen = set()
     for path in paths:
         key = Path(path).resolve()
@@ -355,9 +368,10 @@ def records_for_diagnosis(scenario_path, paths, sets: list[str], option: str = "
         feats.append(meas)
         noises.append(info.get("sensor_noise", {}))
         rates.append(info.get("sampling_rate_hz"))
+        channels |= set(info.get("channels", ()))
     noise = {k: float(np.mean([n[k] for n in noises if k in n])) for k in sorted(set().union(*noises))}
     rates = [r for r in rates if r]
-    return clearance, first, Repeated(feats), {"sensor_noise": noise,
+    return clearance, first, Repeated(feats), {"sensor_noise": noise, "channels": sorted(channels),
                                                "sampling_rate_hz": float(np.median(rates)) if rates else None}
 
 
@@ -868,6 +882,10 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     if sensor_noise_sigma and rate and RATE_KEY not in sensor_noise_sigma:
         # the gate's members are sampled as the record was (_simulate_features)
         sensor_noise_sigma = {**sensor_noise_sigma, RATE_KEY: rate}
+    channels = info.get("channels") or (sorted(measured.channels) if isinstance(measured, Measurement) else None)
+    if sensor_noise_sigma and channels and CHANNELS_KEY not in sensor_noise_sigma:
+        # ... and made of the record's channels (_simulate_features)
+        sensor_noise_sigma = {**sensor_noise_sigma, CHANNELS_KEY: tuple(channels)}
     base = load_scenario(scenario_path, base_overrides)
     if parameters is None:
         parameters = [k for k in DEFAULT_PARAMETERS if k in base.bounds]
@@ -1221,16 +1239,9 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
                            [ensemble_features([d[i] for d in drops]) for i in range(len(sim.points))])
     for sims in member_sims:
         directions.append(_directions(sims))
-        # the member is the "measurement": its own scales, and the journals compared (the gap's).
-        # Noticed, left: a member also counts DE features the record lacks (no force channels);
-        # keeping only the record's features moved one test's gate from below its gap to 0.5648
-        # against 0.5639 (tests/test_diagnose.py, ball drag), session 13
+        # the member is the "measurement": its own scales, and the journals compared (the gap's);
+        # its channels are the record's (_simulate_features), so it has the rows the record's gap has
         sims = [_journal_rows(s, journals) for s in sims]
-        # the load-cell rows (session 43) only where the data have them, so that a record without load
-        # cells keeps the gate it had before they were modelled (the old inconsistency above stays
-        # for the contact-force rows, whose change moves established gates)
-        sims = [{k: v for k, v in s.items() if "housing_force" not in k or k in have}
-                for s, have in zip(sims, (set(p.features) for p in sim.points))]
         g, rows = gap_points(sims, sims0, [p.name for p in sim.points])
         if math.isfinite(g):
             gaps.append(g)

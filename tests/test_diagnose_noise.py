@@ -109,3 +109,27 @@ def test_the_gate_members_are_sampled_as_a_record_is():
         on_grid = np.interp(t[1:-1], ts, noisy)                   # what the features read
         ratios.append(np.var(on_grid) / sigma ** 2)
     assert np.mean(ratios) == pytest.approx(2.0 / 3.0, abs=0.02)
+
+
+def test_a_gate_member_is_made_of_the_records_channels(tmp_path):
+    """A noise gate's member is a model drop taken as the measurement, so its gap must have the
+    rows the record's gap has. Until session 44 it had every channel the model gives: the contact
+    force on the rotor (no sensor reads it) and an NDE channel the record lacked gave it rows the
+    record's gap never has (the bench's strong contact damping, 4 records: gate 0.510, 0.206 on the
+    record's channels). A record without NDE_y_m and without forces: the member's features are the
+    record's, row for row; without the channel list it has the force and NDE rows as well."""
+    from rotorlanding.diagnose_run import CHANNELS_KEY, RATE_KEY, _simulate_features
+
+    model = _model(tmp_path, [])
+    csv = tmp_path / "rig.csv"
+    chans = ("DE_y_m", "DE_z_m", "NDE_z_m", "rotor_speed_rpm", "DE_inner_race_speed_rpm")
+    write_record(model, [], csv, clearance=C, seed=3, fs_hz=5000.0, channels=chans)
+    _, _, meas, info = measured_for_diagnosis(model, csv, [], None)
+    assert info["channels"] == sorted(chans)
+    noise = {**info["sensor_noise"], RATE_KEY: info["sampling_rate_hz"]}
+    member = _simulate_features(model, [], C, noise={**noise, CHANNELS_KEY: tuple(info["channels"])}, seed=1)
+    every = _simulate_features(model, [], C, noise=noise, seed=1)
+    assert set(member) == set(meas)
+    assert {k for k in every if "force" in k or k.startswith("NDE_")} - set(member) >= {"DE_force_peak_n",
+                                                                                        "DE_housing_force_peak_n"}
+    assert all(member[k] == every[k] for k in member if not k.startswith("whirl"))
