@@ -1255,7 +1255,8 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     points = f"a {1e6 * radius:g} um circle" if on_circle else f"random points of a {1e6 * radius:g} um disc"
     return {"gate": gate, "gate_se": gate_standard_error(gaps),
             "source": f"{what} from {points}" + (" with the record's sensor noise" if sigma else "")
-            + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else ""),
+            + (f", sampled at its {rate:.0f} Hz with a random phase" if rate else "")
+            + (f", of its {len(chans)} channels" if (chans := (sigma or {}).get(CHANNELS_KEY)) else ""),
             "member_gaps": gaps, "sensor_noise": sigma or {}, "member_features": sorted(produced),
             "member_directions": directions, "member_sims": kept}
 

@@ -44,6 +44,7 @@ def test_noise_gate_from_the_data_keeps_a_chaotic_clean_control_silent(tmp_path)
     assert res["noise_gate"] > res["gap_before"], res["noise"]
     assert res["named_effect"] is None and res["named_parameters"] == [] and res["explanation"] == "none"
     assert len(res["noise"]["member_gaps"]) == 4 and "sensor noise" in res["noise"]["source"]
+    assert res["noise"]["source"].endswith("of its 6 channels")      # the members are made of the record's
     # the gate is at least the largest member gap and the stated prediction bound of them
     g = res["noise"]["member_gaps"]
     mean = sum(g) / len(g)
