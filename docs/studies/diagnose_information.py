@@ -19,6 +19,8 @@ With GATE=diagnose (session 44) the 4 gate members are drawn as diagnose draws t
 mean of R drops from random points of the 5 um disc (the same seed), sampled at the records' logger rate with a
 random phase; the model's own R drops stay on the circle. The JSONs then end in _D.json;
 with ROWS=data as well (the members count only the records' features) in _Dr.json.
+RECORDS=1 (session 45): the one record the bench writes with --repeats 1 (its seed, drop instant and detection as
+diagnose_bench.run_case), against the centred drop, as diagnose compares one record.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -60,7 +62,8 @@ def whiten(feats, sig):
     return out
 
 def analyse(sim, meas_mean, extra, noise):
-    own = sim.features([extra + o for o in drop_offsets(R)], single=True)
+    # the model diagnose compares: R drops on the circle for R records, the centred drop for one record
+    own = sim.features([extra + o for o in (drop_offsets(R) if R > 1 else [[]])], single=True)
     own = [o[0] for o in own]
     if DIAGNOSE_GATE:
         from rotorlanding.diagnose_run import MEMBER_SEED
@@ -115,16 +118,25 @@ def main(argv):
                                        **{ch: FORCE_NOISE_N * float(frng.uniform(0.5, 2.0)) for ch in FORCE_CHANNELS}}
         rng = np.random.default_rng(5000 + i)
         recs = []
-        for k in range(R):
+        if R == 1:
+            # one record as the bench writes it with --repeats 1 (its own seed, the logger's drop instant)
+            from rotorlanding.diagnose_run import measured_for_diagnosis
+            rec = tmp / f"{case['case']}.csv"
+            write_record(model, case['sets'] + random_drop_offset(np.random.default_rng(4000 + i)), rec, clearance=C,
+                         seed=sen['seed'], fs_hz=sen['fs_hz'], pre_trigger_s=sen['pre_trigger_s'],
+                         drop_at_s=sen['drop_at_s'], channels=sen['channels'], noise_by_channel=sen['noise_by_channel'])
+            clearance, _, meas1, info = measured_for_diagnosis(model, rec, [], None)
+        for k in range(R if R > 1 else 0):
             recs.append(tmp / f"{case['case']}_{k}.csv")
             write_record(model, case['sets'] + random_drop_offset(rng), recs[-1], clearance=C, seed=sen['seed'] + 7919 * k,
                          fs_hz=sen['fs_hz'], pre_trigger_s=sen['pre_trigger_s'], drop_at_s=float(rng.uniform(0.5, 10.0)),
                          channels=sen['channels'], noise_by_channel=sen['noise_by_channel'])
-        clearance, _, meas, info = records_for_diagnosis(model, recs, [])
+        if R > 1:
+            clearance, _, meas, info = records_for_diagnosis(model, recs, [])
         if DIAGNOSE_GATE and info.get('sampling_rate_hz') and info.get('sensor_noise'):
             from rotorlanding.diagnose_run import RATE_KEY
             info['sensor_noise'] = {**info['sensor_noise'], RATE_KEY: info['sampling_rate_hz']}
-        mm = _journal_rows(ensemble_features(meas.features), DEFAULT_JOURNALS)
+        mm = _journal_rows(ensemble_features(meas.features) if R > 1 else meas1, DEFAULT_JOURNALS)
         sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=R, records=R)
         try:
             res = {'case': name, 'as_is': analyse(sim, mm, [], info['sensor_noise'])}
