@@ -48,6 +48,22 @@ FLOOR = 0.1  # whitened scale never below this share of the fixed scale (main: t
 OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
 
 
+# OWN=disc (session 45): the model's own R drops spread over the disc the records fall from (a sunflower layout:
+# radius sqrt((k + 1/2) / R) times the disc's, golden-angle steps), not on its rim as diagnose's ensemble has them
+OWN_DISC = __import__("os").environ.get("OWN", "circle") == "disc"
+# OWN_NOISE=1 (session 45): the model's own drops get the records' sensor noise and logger rate too, so a noisy
+# extreme (a displacement's min / max, the first rebound) is biased alike in the records and the model
+OWN_NOISE = __import__("os").environ.get("OWN_NOISE", "0") == "1"
+
+
+def own_offsets(n):
+    if not OWN_DISC:
+        return drop_offsets(n)
+    from rotorlanding.ensemble import _offset
+    golden = math.pi * (3.0 - math.sqrt(5.0))
+    return [_offset(DROP_RADIUS_M * math.sqrt((k + 0.5) / n), k * golden) for k in range(n)]
+
+
 def gate_of(gaps):
     # diagnose's own gate (gate_bound) without its 0.1 floor, which is in fixed-scale units
     return gate_bound(gaps, floor=0.0)
@@ -63,8 +79,15 @@ def whiten(feats, sig):
 
 def analyse(sim, meas_mean, extra, noise):
     # the model diagnose compares: R drops on the circle for R records, the centred drop for one record
-    own = sim.features([extra + o for o in (drop_offsets(R) if R > 1 else [[]])], single=True)
-    own = [o[0] for o in own]
+    offs = own_offsets(R) if R > 1 else [[]]
+    if OWN_NOISE:
+        # the model's own drops with the records' noise and logger as well (seeds 10000 + k: not a member's)
+        from rotorlanding.diagnose_run import _sim_job
+        p0 = sim.points[0]
+        own = sim.pool.map(_sim_job, [(sim.scenario_path, sim.overrides(p0, extra + o), sim.clearance, noise,
+                                       10000 + k) for k, o in enumerate(offs)], failures="raise")
+    else:
+        own = [o[0] for o in sim.features([extra + o for o in offs], single=True)]
     if DIAGNOSE_GATE:
         from rotorlanding.diagnose_run import MEMBER_SEED
         mrng = np.random.default_rng(MEMBER_SEED + 1000 * 4 + R)
@@ -156,7 +179,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
