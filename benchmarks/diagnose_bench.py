@@ -145,39 +145,50 @@ def judge(case: dict, res: dict) -> bool:
     return (res["explanation"] == "parameter" and [q["key"] for q in res["named_parameters"]] == truth)
 
 
-def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
-             directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0) -> dict:
-    from sensor_model import C, THRUST, known_rig_model, write_record
+def write_records(i: int, case: dict, model: Path, tmp: Path, sen: dict, repeats: int) -> list[Path]:
+    """The "measured" records of case ``i`` (its true model ``model``, its logger ``sen`` from
+    :func:`sensor`), seeded per case, so the bench and the information probe
+    (docs/studies/diagnose_information.py) read the same data."""
+    from sensor_model import C, write_record
 
-    from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
     from rotorlanding.ensemble import random_drop_offset
 
-    model = known_rig_model(tmp / f"{case['case']}.toml", case["off"], extra=THRUST if case["thrust"] else "")
-    rec = tmp / f"{case['case']}.csv"
-    sen = sensor(i, case, load_cells_n)
     if repeats == 1:
         # one landing, from a random point within the AMB's 5 um position error as a rig drops (until
         # session 21 exactly centred: the data then differed from the centred model by sensor noise
         # alone, an easier clean control than any rig gives)
+        rec = tmp / f"{case['case']}.csv"
         write_record(model, case["sets"] + random_drop_offset(np.random.default_rng(4000 + i)), rec, clearance=C,
                      seed=sen["seed"], fs_hz=sen["fs_hz"],
                      pre_trigger_s=sen["pre_trigger_s"], drop_at_s=sen["drop_at_s"], channels=sen["channels"],
                      noise_by_channel=sen["noise_by_channel"])
-    else:
-        # repeated landings: the same rig and logger, each drop from its own random point within
-        # the AMB's 5 um position error (a real rig is never dropped twice from the same point), its
-        # own noise, phase and drop instant
-        rng = np.random.default_rng(5000 + i)
-        recs = []
-        for k in range(repeats):
-            recs.append(tmp / f"{case['case']}_{k}.csv")
-            write_record(model, case["sets"] + random_drop_offset(rng), recs[-1],
-                         clearance=C, seed=sen["seed"] + 7919 * k, fs_hz=sen["fs_hz"],
-                         pre_trigger_s=sen["pre_trigger_s"], drop_at_s=float(rng.uniform(0.5, 10.0)),
-                         channels=sen["channels"], noise_by_channel=sen["noise_by_channel"])
+        return [rec]
+    # repeated landings: the same rig and logger, each drop from its own random point within
+    # the AMB's 5 um position error (a real rig is never dropped twice from the same point), its
+    # own noise, phase and drop instant
+    rng = np.random.default_rng(5000 + i)
+    recs = []
+    for k in range(repeats):
+        recs.append(tmp / f"{case['case']}_{k}.csv")
+        write_record(model, case["sets"] + random_drop_offset(rng), recs[-1],
+                     clearance=C, seed=sen["seed"] + 7919 * k, fs_hz=sen["fs_hz"],
+                     pre_trigger_s=sen["pre_trigger_s"], drop_at_s=float(rng.uniform(0.5, 10.0)),
+                     channels=sen["channels"], noise_by_channel=sen["noise_by_channel"])
+    return recs
+
+
+def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
+             directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0) -> dict:
+    from sensor_model import THRUST, known_rig_model
+
+    from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
+
+    model = known_rig_model(tmp / f"{case['case']}.toml", case["off"], extra=THRUST if case["thrust"] else "")
+    sen = sensor(i, case, load_cells_n)
+    recs = write_records(i, case, model, tmp, sen, repeats)
     t0 = time.perf_counter()
     # as the command does: the drop is detected, the record's noise measured (info)
-    clearance, _, meas, info = (measured_for_diagnosis(model, rec, [], None) if repeats == 1
+    clearance, _, meas, info = (measured_for_diagnosis(model, recs[0], [], None) if repeats == 1
                                 else records_for_diagnosis(model, recs, []))
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
                    max_effects=case["max_effects"], journals=journals, ensemble=ensemble, directed=directed,

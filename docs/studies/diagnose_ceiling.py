@@ -59,7 +59,7 @@ def verdict(case, d):
     if case["kind"] == "clean":
         ok = g0 <= gate0
         return ok, f"gap {g0:.3f}, gate {gate0:.3f} ({g0 / gate0:.2f}): " + ("quiet" if ok else "a false alarm")
-    gt, gate_t = phys(d, "truth")
+    gt, _ = phys(d, "truth")
     if case["kind"] != "pair":
         ok, why = step(g0, gate0, gt)
         return ok, f"as given {g0:.3f} / gate {gate0:.3f}, truth {gt:.3f}: {why}"
@@ -98,13 +98,14 @@ def main(argv):
             counts["missing"] += 1
             print(f"| {name} | {case['kind']} | (no probe) | {'-' if tool is None else ('yes' if right else 'NO')} | |")
             continue
-        ok, text = verdict(case, json.loads(path.read_text()))
+        probe = json.loads(path.read_text())
+        ok, text = verdict(case, probe)
         counts["reachable"] += ok
         counts["tool right"] += right
         if right and not ok:
             counts["tool right, not reachable"] += 1
             text += " (named by another route)"
-        truth_gap = json.loads(path.read_text()).get("truth", {}).get("phys", {}).get("gap")
+        truth_gap = probe.get("truth", {}).get("phys", {}).get("gap")
         if tool is not None and not right and tool["named"] not in ("", "-") and truth_gap is not None \
                 and float(tool["gap_after"]) < truth_gap:
             # what diagnose named fits the records better than the truth does: no fit-based rule finds the truth

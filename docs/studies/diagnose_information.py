@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 ROOT = Path(__file__).resolve().parents[2]; sys.path.insert(0, str(ROOT / 'tests')); sys.path.insert(0, str(ROOT / 'benchmarks'))
 import diagnose_bench as B
-from sensor_model import C, THRUST, known_rig_model, write_record
+from sensor_model import C, THRUST, known_rig_model
 from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, _journal_rows, DEFAULT_JOURNALS, gate_bound
 from rotorlanding.ensemble import random_drop_offset, drop_offsets, DROP_RADIUS_M
 from rotorlanding.features import ensemble_features, gap_points, scale_of, WHIRL_SHARES
@@ -139,22 +139,12 @@ def main(argv):
             sen['channels'] = list(sen['channels']) + list(FORCE_CHANNELS)
             sen['noise_by_channel'] = {**sen['noise_by_channel'],
                                        **{ch: FORCE_NOISE_N * float(frng.uniform(0.5, 2.0)) for ch in FORCE_CHANNELS}}
-        rng = np.random.default_rng(5000 + i)
-        recs = []
+        # the bench's own records (diagnose_bench.write_records: the same seeds), read as diagnose reads them
+        recs = B.write_records(i, case, model, tmp, sen, R)
         if R == 1:
-            # one record as the bench writes it with --repeats 1 (its own seed, the logger's drop instant)
             from rotorlanding.diagnose_run import measured_for_diagnosis
-            rec = tmp / f"{case['case']}.csv"
-            write_record(model, case['sets'] + random_drop_offset(np.random.default_rng(4000 + i)), rec, clearance=C,
-                         seed=sen['seed'], fs_hz=sen['fs_hz'], pre_trigger_s=sen['pre_trigger_s'],
-                         drop_at_s=sen['drop_at_s'], channels=sen['channels'], noise_by_channel=sen['noise_by_channel'])
-            clearance, _, meas1, info = measured_for_diagnosis(model, rec, [], None)
-        for k in range(R if R > 1 else 0):
-            recs.append(tmp / f"{case['case']}_{k}.csv")
-            write_record(model, case['sets'] + random_drop_offset(rng), recs[-1], clearance=C, seed=sen['seed'] + 7919 * k,
-                         fs_hz=sen['fs_hz'], pre_trigger_s=sen['pre_trigger_s'], drop_at_s=float(rng.uniform(0.5, 10.0)),
-                         channels=sen['channels'], noise_by_channel=sen['noise_by_channel'])
-        if R > 1:
+            clearance, _, meas1, info = measured_for_diagnosis(model, recs[0], [], None)
+        else:
             clearance, _, meas, info = records_for_diagnosis(model, recs, [])
         if DIAGNOSE_GATE and info.get('sampling_rate_hz') and info.get('sensor_noise'):
             from rotorlanding.diagnose_run import RATE_KEY
