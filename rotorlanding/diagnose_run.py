@@ -58,6 +58,12 @@ from .safeio import atomic_write_text, save_figure
 NOISE_GAP_MIN = 0.1
 #: drops of the model that estimate the gate (drops from random points of a 5 um disc)
 NOISE_MEMBERS = 4
+#: reads of each model drop through the records' sensor model (_Simulator.as_recorded): the
+#: noise left in the model's mean features is that of 1/8 of a record's (a read costs ~1 ms of
+#: feature extraction against a 0.2-0.8 s landing)
+MODEL_REALISATIONS = 8
+#: the seed of the model's reads (drop k: [MODEL_READ_SEED + k, read]), apart from the members'
+MODEL_READ_SEED = 10000
 #: a named effect must remove at least this share of the remaining gap; with two missing effects
 #: the first one found can only remove its own part (e.g. 48 % for windage + ribbon cross-coupling)
 MIN_STEP_IMPROVEMENT = 0.3
@@ -106,9 +112,12 @@ class Point:
     features: dict = field(default_factory=dict)
 
 
-def _simulate_features(scenario_path, overrides, clearance, *, with_series=False, noise=None, seed=0):
+def _simulate_features(scenario_path, overrides, clearance, *, with_series=False, noise=None, seed=0,
+                       realisations: int = 0):
     """Features of one simulation; ``noise`` (channel -> standard deviation, the measured record's
-    own sensor noise, :func:`sensor_noise`) is added to the model's series first (seeded)."""
+    own sensor noise, :func:`sensor_noise`) is added to the model's series first (seeded).
+    ``realisations`` > 0: the list of the features of that many records of this one landing, each
+    with its own noise and logger phase (seeds ``[seed, m]``), the landing simulated once."""
     from .postprocess import evaluate
     from .run import simulate
     from .scenario import load_scenario
@@ -129,33 +138,42 @@ def _simulate_features(scenario_path, overrides, clearance, *, with_series=False
         chans[f"{b.name}_inner_race_speed_rpm"] = (t, series[f"{b.name}_race_speed_rpm"])
     chans["rotor_speed_rpm"] = (t, series["rotor_speed_rpm"])
     chans["axial_m"] = (t, series["axial_position_m"])
-    if noise:
-        noise = dict(noise)
-        fs = noise.pop(RATE_KEY, None)
-        channels = noise.pop(CHANNELS_KEY, None)
-        if channels:
-            # a drop taken as a record (a noise gate's member) has the record's channels only: until
-            # session 44 it had every channel the model gives, so its gap counted
-            # rows the record's gap cannot have (the contact force, which no sensor reads; an NDE
-            # channel the record lacks). Against an unchanged gap that inflated the gate: 0.510
-            # against 0.206 on the bench's strong contact damping, 4 records (the undamped model's
-            # contact-force peak scatters 0.32 of its scale between drops, 0.07 with the damping)
-            chans = {k: v for k, v in chans.items() if k in channels}
-        rng = np.random.default_rng(seed)
-        if fs:
-            # sampled as a record is: at the logger's rate, with a random phase against the drop and
-            # one sample before it, so the features interpolate the noisy samples onto their grid from
-            # the drop as they do a record's (partly averaging the noise). With the noise on that grid
-            # itself, every extreme kept its full noise: three clean records' first rebounds read
-            # 0.227-0.251 mm (noise-free 0.218), the gate's members 0.242-0.254 on the grid and
-            # 0.234-0.243 sampled like this (session 20)
-            chans = logger_samples(chans, fs, rng.uniform(0.0, 1.0))
-        for name, sigma in sorted(noise.items()):
-            if name in chans and sigma > 0:
-                tt, vv = chans[name]
-                chans[name] = (tt, vv + rng.normal(0.0, sigma, np.shape(vv)))
-    feats = extract_features(Measurement(chans), clearance=clearance, t_drop=sc.amb.t_drop)
-    return (feats, Measurement(chans)) if with_series else feats
+    if noise and realisations > 0:
+        return [extract_features(_as_recorded(chans, noise, np.random.default_rng([seed, m])), clearance=clearance,
+                                 t_drop=sc.amb.t_drop) for m in range(realisations)]
+    measured = _as_recorded(chans, noise, np.random.default_rng(seed)) if noise else Measurement(chans)
+    feats = extract_features(measured, clearance=clearance, t_drop=sc.amb.t_drop)
+    return (feats, measured) if with_series else feats
+
+
+def _as_recorded(chans: dict, noise: dict, rng) -> Measurement:
+    """The model's channels (name -> (t, v)) as the record's logger gives them: its channels only,
+    sampled at its rate with a random phase, its sensor noise added (``noise``: :func:`sensor_noise`
+    with :data:`RATE_KEY` and :data:`CHANNELS_KEY`); ``rng`` draws the phase, then the noise."""
+    noise = dict(noise)
+    fs = noise.pop(RATE_KEY, None)
+    channels = noise.pop(CHANNELS_KEY, None)
+    if channels:
+        # a drop taken as a record (a noise gate's member) has the record's channels only: until
+        # session 44 it had every channel the model gives, so its gap counted
+        # rows the record's gap cannot have (the contact force, which no sensor reads; an NDE
+        # channel the record lacks). Against an unchanged gap that inflated the gate: 0.510
+        # against 0.206 on the bench's strong contact damping, 4 records (the undamped model's
+        # contact-force peak scatters 0.32 of its scale between drops, 0.07 with the damping)
+        chans = {k: v for k, v in chans.items() if k in channels}
+    if fs:
+        # sampled as a record is: at the logger's rate, with a random phase against the drop and
+        # one sample before it, so the features interpolate the noisy samples onto their grid from
+        # the drop as they do a record's (partly averaging the noise). With the noise on that grid
+        # itself, every extreme kept its full noise: three clean records' first rebounds read
+        # 0.227-0.251 mm (noise-free 0.218), the gate's members 0.242-0.254 on the grid and
+        # 0.234-0.243 sampled like this (session 20)
+        chans = logger_samples(chans, fs, rng.uniform(0.0, 1.0))
+    for name, sigma in sorted(noise.items()):
+        if name in chans and sigma > 0:
+            tt, vv = chans[name]
+            chans[name] = (tt, vv + rng.normal(0.0, sigma, np.shape(vv)))
+    return Measurement(chans)
 
 
 def logger_samples(chans: dict, fs: float, phase: float) -> dict:
@@ -172,9 +190,10 @@ def logger_samples(chans: dict, fs: float, phase: float) -> dict:
 def _sim_job(args):
     """One simulation in a worker: features, or the failure (a solver that does not converge at a
     trial parameter value is a bad trial, not a crash of the diagnosis)."""
-    scenario_path, overrides, clearance, noise, seed = args
+    scenario_path, overrides, clearance, noise, seed, *more = args
     try:
-        return _simulate_features(scenario_path, overrides, clearance, noise=noise, seed=seed)
+        return _simulate_features(scenario_path, overrides, clearance, noise=noise, seed=seed,
+                                  realisations=more[0] if more else 0)
     except Exception as exc:  # noqa: BLE001 - reported as a failed trial
         return {"__error__": f"{type(exc).__name__}: {exc}"}
 
@@ -185,8 +204,20 @@ class _Simulator:
     (its speed ...), then the candidate effect and its parameter."""
 
     def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str],
-                 ensemble: int = 1, ensemble_radius_m: float | None = None, records: int = 1):
+                 ensemble: int = 1, ensemble_radius_m: float | None = None, records: int = 1,
+                 as_recorded: dict | None = None, realisations: int = MODEL_REALISATIONS):
         self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
+        # the records' sensor model (sensor_noise with RATE_KEY, CHANNELS_KEY): the model's own drops
+        # are compared as the records are, each landing read ``realisations`` times through it (its
+        # noise, logger rate, random phase; seeds common to every variant) and its features the
+        # mean of those reads. A noisy signal's extremes (a displacement's min / max, the first
+        # rebound) lie beyond the noise-free signal's, so a noise-free model is biased against
+        # every noisy record: the bench's clean 6 um control, four records, had a gap of 0.682
+        # against the noise-free model and 0.168 against the noisy one (session 45's probe,
+        # docs/measured_data.md). With repeated records the model's drops also spread over the
+        # disc the records fall from (ensemble.disc_drop_offsets), not on its rim
+        self.as_recorded = as_recorded or None
+        self.realisations = max(1, int(realisations))
         self.pool = Pool(workers, blas_threads=None)  # BLAS as before (runner.worker_setup says why)
         self.count = 0
         # > 1: every model variant is an ensemble of drops from a 5 um circle and its features are
@@ -220,21 +251,34 @@ class _Simulator:
         return [list(self.memo[k]) for k in keys]
 
     def _land(self, extras: list[list[str]], noise, single: bool) -> list[list[dict]]:
-        from .ensemble import drop_offsets
+        from .ensemble import disc_drop_offsets, drop_offsets
         from .features import ensemble_features
 
         if not extras:
             return []
+        radius = [self.radius] if self.radius else []
         members = [[]] if single or self.ensemble <= 1 else \
-            drop_offsets(self.ensemble, *([self.radius] if self.radius else []))
-        jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, noise, i)
-                for i, extra in enumerate(extras) for p in self.points for off in members]
+            disc_drop_offsets(self.ensemble, *radius) if self.as_recorded and self.records > 1 else \
+            drop_offsets(self.ensemble, *radius)
+        if noise is None and not single and self.as_recorded:
+            # the model's own drops, read as the records are; drop k's reads have the same seeds in
+            # every variant, so a parameter's change is not mixed with a change of noise draws
+            jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, self.as_recorded,
+                     MODEL_READ_SEED + k, self.realisations)
+                    for extra in extras for p in self.points for k, off in enumerate(members)]
+        else:
+            jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, noise, i)
+                    for i, extra in enumerate(extras) for p in self.points for off in members]
         self.count += len(jobs)
         out = self.pool.map(_sim_job, jobs, failures="raise")  # _sim_job turns a failed trial into its row
         k = len(members)
-        if k > 1:
+        if k > 1 or (out and isinstance(out[0], list)):
             grouped = [out[j * k:(j + 1) * k] for j in range(len(out) // k)]
-            out = [next((m for m in g if "__error__" in m), None) or ensemble_features(g) for g in grouped]
+            # a drop read several times contributes each read (as many per drop): the features are
+            # the mean over drops and reads, the whirl shares over reads
+            out = [next((m for m in g if isinstance(m, dict) and "__error__" in m), None)
+                   or ensemble_features([r for m in g for r in (m if isinstance(m, list) else [m])])
+                   for g in grouped]
         n = len(self.points)
         return [out[i * n:(i + 1) * n] for i in range(len(extras))]
 
@@ -841,7 +885,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
              sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
              ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
-             directed: bool = False) -> dict:
+             directed: bool = False, as_recorded: bool = True) -> dict:
     """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is),
     :class:`Repeated` (the features of several records of one point: compared as their means, the
     model then an ensemble of as many drops unless ``ensemble`` > 1 says otherwise) or a list of
@@ -854,7 +898,10 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     ``journals``: whose per-journal features are compared (the whirl rows are the DE's); a
     measured feature of another journal is left out, in the gap and in the noise gate alike.
     ``directed``: where the gap is inside the gate, a candidate that shrinks it may still be named
-    when it shrinks it more than fitting it to the gate's noise members does (:func:`_directed_test`)."""
+    when it shrinks it more than fitting it to the gate's noise members does (:func:`_directed_test`).
+    ``as_recorded``: the model's drops are read through the records' sensor model (their noise,
+    logger rate and channels, where known) as the records were (:class:`_Simulator`); False: the
+    noise-free model (diagnose until session 46)."""
     from .scenario import load_scenario
 
     t_start = time.perf_counter()
@@ -895,7 +942,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                              "keys: " + ", ".join(base.bounds), file=str(scenario_path))
     current_values = _current_values(base, parameters)
     sim = _Simulator(scenario_path, points, clearance, workers, base_overrides, ensemble=ensemble,
-                     ensemble_radius_m=ensemble_radius_m, records=records)
+                     ensemble_radius_m=ensemble_radius_m, records=records,
+                     as_recorded=sensor_noise_sigma if as_recorded else None)
     terms: list[Term] = []
     named, steps, warnings = [], [], []
     try:

@@ -34,6 +34,18 @@ def random_drop_offset(rng, radius_m: float = DROP_RADIUS_M) -> list[str]:
     return _offset(radius_m * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi))
 
 
+def disc_drop_offsets(n: int, radius_m: float = DROP_RADIUS_M) -> list[list[str]]:
+    """``--set`` overrides of ``n`` drops spread evenly over the disc of radius ``radius_m`` (a
+    sunflower layout: drop k at radius sqrt((k + 1/2) / n) of the disc's, golden-angle steps), the
+    deterministic counterpart of :func:`random_drop_offset`: a model's drops that stand for records
+    falling from random points of the disc (their mean radius 2/3 of the disc's), where
+    :func:`drop_offsets` puts every drop on its rim."""
+    if n < 1:
+        raise ValueError(f"ensemble size must be >= 1, got {n}")
+    golden = math.pi * (3.0 - math.sqrt(5.0))
+    return [_offset(radius_m * math.sqrt((k + 0.5) / n), k * golden) for k in range(n)]
+
+
 def _offset(r: float, a: float) -> list[str]:
     r, a = float(r), float(a)
     return [f"amb.drop_offset_m=[{r * math.cos(a)!r}, {r * math.sin(a)!r}]"]
