@@ -178,7 +178,8 @@ def write_records(i: int, case: dict, model: Path, tmp: Path, sen: dict, repeats
 
 
 def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
-             directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0) -> dict:
+             directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0,
+             as_recorded: bool = True) -> dict:
     from sensor_model import THRUST, known_rig_model
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
@@ -192,6 +193,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
                                 else records_for_diagnosis(model, recs, []))
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
                    max_effects=case["max_effects"], journals=journals, ensemble=ensemble, directed=directed,
+                   as_recorded=as_recorded,
                    **({} if noise_members is None else {"noise_members": noise_members}))
     wall = time.perf_counter() - t0
     named = res["named_effects"] + [q["key"] for q in res["named_parameters"]]
@@ -262,6 +264,9 @@ def main(argv=None) -> int:
     ap.add_argument("--load-cells", type=float, default=0.0, metavar="N",
                     help="add the four load-cell channels (the housing's force on each bearing) with white noise of N "
                          "newtons times 0.5-2 per channel (default 0: displacements and speeds only)")
+    ap.add_argument("--noise-free-model", action="store_true",
+                    help="diagnose(as_recorded=False): the model's drops noise-free, as diagnose had them until "
+                         "session 46 (for an A/B)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     if out.is_dir() or a.out.endswith("/"):  # a folder: the table goes inside it, not over it (a crash after case 1)
@@ -283,7 +288,7 @@ def main(argv=None) -> int:
                 continue
             try:
                 row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats,
-                               a.directed, a.noise_members, a.load_cells)
+                               a.directed, a.noise_members, a.load_cells, not a.noise_free_model)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],

@@ -236,6 +236,21 @@ class _Simulator:
     def overrides(self, p: Point, extra: list[str]) -> list[str]:
         return self.base + list(p.overrides) + list(extra)
 
+    def read_description(self) -> str:
+        """What the model's features are, in words (the report's line)."""
+        from .ensemble import DROP_RADIUS_M
+
+        radius = 1e6 * (self.radius or DROP_RADIUS_M)
+        drops = ("the centred drop" if self.ensemble <= 1 else
+                 f"{self.ensemble} drops spread over the {radius:g} um disc" if self.as_recorded and self.records > 1
+                 else f"{self.ensemble} drops from the {radius:g} um circle")
+        if not self.as_recorded:
+            return drops + ", noise-free"
+        rate = self.as_recorded.get(RATE_KEY)
+        return (f"{drops}, each read {self.realisations} times through the records' sensor model (their noise"
+                + (f", their {rate:.0f} Hz logger with a random phase" if rate else "")
+                + (", their channels" if self.as_recorded.get(CHANNELS_KEY) else "") + "), the mean of the reads")
+
     def features(self, extras: list[list[str]], noise=None, single: bool = False) -> list[list[dict]]:
         """Simulated features at every point for each model variant (all submitted at once);
         ``noise``: sensor noise added to the series (variant i seeded with i); ``single``: one drop
@@ -1165,7 +1180,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                         "whirl_measured": p.features.get("whirl_direction", (None,))[0],
                         "whirl_before": d0, "whirl_after": d1}
                        for p, d0, d1 in zip(points, directions_before, current_dirs)],
-            "ensemble": ensemble, "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
+            "ensemble": ensemble, "model_read": sim.read_description(), "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
 
 
 def _public(noise: dict | None) -> dict | None:
@@ -1500,6 +1515,8 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
              f"Noise gate: **{res['noise_gate']:.3f}** ({res['noise']['source']}; gaps of the members: "
              f"{', '.join(f'{g:.3f}' for g in res['noise']['member_gaps']) or '-'})"
              + (f"; of the final model: **{res['noise_gate_final']:.3f}**" if res.get("noise_final") else "") + ".", ""]
+    if res.get("model_read"):
+        lines += [f"The model compared: {res['model_read']}.", ""]
     margins = res.get("gate_margins") or {}
     said = [t for t in (_margin_text(k, margins[k]) for k in ("before", "after") if margins.get(k)) if t]
     if said:

@@ -115,3 +115,12 @@ def test_the_models_drops_are_read_with_seeds_common_to_every_variant(tmp_path):
     plain.features([["a=1"]])
     assert all(j[3] is None and len(j) == 5 for j in plain.pool.jobs)
     assert [j[1][-1] for j in plain.pool.jobs] != [o[0] for o in disc_drop_offsets(4)]
+
+
+def test_the_report_says_how_the_model_was_read():
+    sensor = {"DE_y_m": 1e-6, d.RATE_KEY: 5000.0, d.CHANNELS_KEY: ("DE_y_m",)}
+    sim = d._Simulator("m.toml", [d.Point("")], C, 1, [], ensemble=4, records=4, as_recorded=sensor, realisations=8)
+    assert sim.read_description() == ("4 drops spread over the 5 um disc, each read 8 times through the records' "
+                                      "sensor model (their noise, their 5000 Hz logger with a random phase, their "
+                                      "channels), the mean of the reads")
+    assert d._Simulator("m.toml", [d.Point("")], C, 1, []).read_description() == "the centred drop, noise-free"
