@@ -21,6 +21,8 @@ random phase; the model's own R drops stay on the circle. The JSONs then end in 
 with ROWS=data as well (the members count only the records' features) in _Dr.json.
 RECORDS=1 (session 45): the one record the bench writes with --repeats 1 (its seed, drop instant and detection as
 diagnose_bench.run_case), against the centred drop, as diagnose compares one record.
+OWN=read (session 46): the model as diagnose compares it since session 46 (each drop read through the records'
+sensor model; needs GATE=diagnose); JSONs end in _read.json.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -54,6 +56,9 @@ OWN_DISC = __import__("os").environ.get("OWN", "circle") == "disc"
 # OWN_NOISE=1 (session 45): the model's own drops get the records' sensor noise and logger rate too, so a noisy
 # extreme (a displacement's min / max, the first rebound) is biased alike in the records and the model
 OWN_NOISE = __import__("os").environ.get("OWN_NOISE", "0") == "1"
+# OWN=read (session 46): the model as diagnose now compares it (_Simulator's as_recorded: R drops over the disc,
+# or the centred one for one record, each read 8 times through the records' sensor model and channels)
+OWN_READ = __import__("os").environ.get("OWN", "circle") == "read"
 
 
 def own_offsets(n):
@@ -80,7 +85,9 @@ def whiten(feats, sig):
 def analyse(sim, meas_mean, extra, noise):
     # the model diagnose compares: R drops on the circle for R records, the centred drop for one record
     offs = own_offsets(R) if R > 1 else [[]]
-    if OWN_NOISE:
+    if OWN_READ:
+        own, model_feats = [], sim.features([extra])[0][0]
+    elif OWN_NOISE:
         # the model's own drops with the records' noise and logger as well (seeds 10000 + k: not a member's)
         from rotorlanding.diagnose_run import _sim_job
         p0 = sim.points[0]
@@ -96,7 +103,7 @@ def analyse(sim, meas_mean, extra, noise):
         groups = [drop_offsets(R, DROP_RADIUS_M, (g + 1) / (R + 1)) for g in range(4)]
     flat = sim.features([extra + o for grp in groups for o in grp], noise=noise, single=True)
     flat = [f[0] for f in flat]
-    model = _journal_rows(ensemble_features(own), DEFAULT_JOURNALS)
+    model = _journal_rows(model_feats if OWN_READ else ensemble_features(own), DEFAULT_JOURNALS)
     members = [_journal_rows(ensemble_features(flat[g * R:(g + 1) * R]), DEFAULT_JOURNALS) for g in range(4)]
     if DATA_ROWS:
         members = [{k: v for k, v in m.items() if k in meas_mean} for m in members]
@@ -150,7 +157,11 @@ def main(argv):
             from rotorlanding.diagnose_run import RATE_KEY
             info['sensor_noise'] = {**info['sensor_noise'], RATE_KEY: info['sampling_rate_hz']}
         mm = _journal_rows(ensemble_features(meas.features) if R > 1 else meas1, DEFAULT_JOURNALS)
-        sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=R, records=R)
+        if OWN_READ:
+            from rotorlanding.diagnose_run import CHANNELS_KEY
+            info['sensor_noise'] = {**info['sensor_noise'], CHANNELS_KEY: tuple(info['channels'])}
+        sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=R, records=R,
+                         as_recorded=info['sensor_noise'] if OWN_READ else None)
         try:
             res = {'case': name, 'as_is': analyse(sim, mm, [], info['sensor_noise'])}
             if case['kind'] != 'clean':
@@ -169,7 +180,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
