@@ -8,7 +8,7 @@ from a circle). Prints both scans and the number of interior local minima of eac
 (atomically) with --out.
 
 usage: python benchmarks/diagnose_gap_scan.py [--mu 0.05,0.1,...] [--ensemble 8] [--radius-m 3e-5]
-       [--workers 2] [--records 4] [--out scan.json]
+       [--workers 2] [--records 4] [--as-recorded] [--out scan.json]
 """
 
 from __future__ import annotations
@@ -55,14 +55,16 @@ def jackknife_se(leave_one_out: list[float]) -> float:
 
 
 def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22, t_end: float = 0.3,
-         records: int = 1) -> dict:
+         records: int = 1, as_recorded: bool = False) -> dict:
     """``records`` > 1: the "measurement" is that many records of repeated landings, each dropped
     from its own random point within 5 um (seeded), compared as their mean features (diagnose's
-    ``Repeated``) with the model's ensembles (``ensemble`` drops of radius ``radius_m``)."""
+    ``Repeated``) with the model's ensembles (``ensemble`` drops of radius ``radius_m``).
+    ``as_recorded``: every model drop read 8 times through the records' sensor model, as diagnose
+    compares since session 46 (``_Simulator.as_recorded``; seeds common to every mu)."""
     import numpy as np
     from sensor_model import C, known_rig_model, write_record
 
-    from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis
+    from rotorlanding.diagnose_run import CHANNELS_KEY, RATE_KEY, Point, _Simulator, measured_for_diagnosis
     from rotorlanding.ensemble import drop_offsets, random_drop_offset
     from rotorlanding.features import ensemble_features, gap_points
 
@@ -70,16 +72,19 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
         model = known_rig_model(Path(tmp) / "model.toml", ["windage"], t_end=t_end)
         if records == 1:
             write_record(model, [f"contact.mu_rad={truth!r}"], Path(tmp) / "rig.csv", clearance=C, seed=3)
-            _, _, meas, _ = measured_for_diagnosis(model, Path(tmp) / "rig.csv", [], None)
+            _, _, meas, info = measured_for_diagnosis(model, Path(tmp) / "rig.csv", [], None)
         else:
             rng, feats = np.random.default_rng(3), []
             for k in range(records):
                 write_record(model, [f"contact.mu_rad={truth!r}"] + random_drop_offset(rng), Path(tmp) / f"rig{k}.csv",
                              clearance=C, seed=3 + k)
-                feats.append(measured_for_diagnosis(model, Path(tmp) / f"rig{k}.csv", [], None)[2])
+                _, _, f, info = measured_for_diagnosis(model, Path(tmp) / f"rig{k}.csv", [], None)
+                feats.append(f)
             meas = ensemble_features(feats)
-        out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m, "records": records}
-        sim = _Simulator(model, [Point("", [], meas)], C, workers, [])
+        out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m, "records": records,
+               "as_recorded": as_recorded}
+        sensor = {**info["sensor_noise"], RATE_KEY: info["sampling_rate_hz"], CHANNELS_KEY: tuple(info["channels"])}
+        sim = _Simulator(model, [Point("", [], meas)], C, workers, [], as_recorded=sensor if as_recorded else None)
         try:
             out["single"] = [r[0] for r in sim.gaps([[f"contact.mu_rad={mu!r}"] for mu in mus])]
             # the ensemble's drops landed one by one (the same drop points as diagnose --ensemble), so
@@ -115,9 +120,12 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--records", type=int, default=1,
                     help="records of repeated landings as the measurement (default 1: one record, dropped centred)")
+    ap.add_argument("--as-recorded", action="store_true",
+                    help="the model's drops read through the records' sensor model, as diagnose compares them")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
-    res = scan([float(x) for x in a.mu.split(",")], a.ensemble, a.radius_m, a.workers, records=a.records)
+    res = scan([float(x) for x in a.mu.split(",")], a.ensemble, a.radius_m, a.workers, records=a.records,
+               as_recorded=a.as_recorded)
     for label in ("single", "ensemble"):
         print(f"{label:8s}: " + " ".join(f"{g:.2f}" for g in res[label]) + f"  (local minima {res[label + '_local_minima']})")
     print("  s.e.  : " + " ".join(f"{g:.2f}" for g in res["ensemble_se"])
