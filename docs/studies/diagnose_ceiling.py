@@ -84,7 +84,7 @@ def main(argv):
     cells = " with load cells (FORCES=20 FORCE_KIND=housing)" if suffix == "_H" else ""
     print(f"# What the bench's records allow diagnose's rule, {records} record{'s' if records > 1 else ''}{cells}"
           f" (`{Path(__file__).name}`)\n")
-    print(f"Probe: `diagnose_information.py` with RECORDS={records}{cells} GATE=diagnose ROWS=data; tool: "
+    print(f"Probe: `diagnose_information.py` with RECORDS={records}{cells} GATE=diagnose ROWS=data{' OWN=read (the model read as the records are, diagnose since session 46)' if tail == '_read' else ''}; tool: "
           + ("not run" if bench == "-" else f"`{Path(bench).name}`") + ".\n")
     print("| case | kind | records allow | tool | what the records give |")
     print("|---|---|---|---|---|")
