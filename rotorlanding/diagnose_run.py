@@ -59,8 +59,8 @@ NOISE_GAP_MIN = 0.1
 #: drops of the model that estimate the gate (drops from random points of a 5 um disc)
 NOISE_MEMBERS = 4
 #: reads of each model drop through the records' sensor model (_Simulator.as_recorded): the
-#: noise left in the model's mean features is that of 1/8 of a record's (a read costs ~1 ms of
-#: feature extraction against a 0.2-0.8 s landing)
+#: noise left in the model's mean features is that of 1/8 of a record's (a read, logger sampling,
+#: noise and feature extraction, costs about 5 ms against a 0.2-0.8 s landing; docs/performance.md)
 MODEL_REALISATIONS = 8
 #: the seed of the model's reads (drop k: [MODEL_READ_SEED + k, read]), apart from the members'
 MODEL_READ_SEED = 10000
@@ -213,7 +213,7 @@ class _Simulator:
         # mean of those reads. A noisy signal's extremes (a displacement's min / max, the first
         # rebound) lie beyond the noise-free signal's, so a noise-free model is biased against
         # every noisy record: the bench's clean 6 um control, four records, had a gap of 0.682
-        # against the noise-free model and 0.168 against the noisy one (session 45's probe,
+        # against the noise-free model and 0.122 (gate 0.925 -> 0.363) read like this (session 46,
         # docs/measured_data.md). With repeated records the model's drops also spread over the
         # disc the records fall from (ensemble.disc_drop_offsets), not on its rim
         self.as_recorded = as_recorded or None
