@@ -287,7 +287,7 @@ class _Simulator:
         self.count += len(jobs)
         out = self.pool.map(_sim_job, jobs, failures="raise")  # _sim_job turns a failed trial into its row
         k = len(members)
-        if k > 1 or (out and isinstance(out[0], list)):
+        if k > 1 or any(isinstance(m, list) for m in out):  # the reads of one drop come as a list
             grouped = [out[j * k:(j + 1) * k] for j in range(len(out) // k)]
             # a drop read several times contributes each read (as many per drop): the features are
             # the mean over drops and reads, the whirl shares over reads

@@ -124,3 +124,20 @@ def test_the_report_says_how_the_model_was_read():
                                       "sensor model (their noise, their 5000 Hz logger with a random phase, their "
                                       "channels), the mean of the reads")
     assert d._Simulator("m.toml", [d.Point("")], C, 1, []).read_description() == "the centred drop, noise-free"
+
+
+def test_a_failed_drop_stays_a_failed_variant_when_the_model_is_read():
+    """One drop per variant (one record), read 3 times: the first variant's landing fails (its job gives the
+    error row, not a list of reads), the second lands. The first stays a failed trial, the second is the mean of
+    its reads."""
+    class Failing(_Recorder):
+        def map(self, fn, jobs, failures="row"):
+            out = super().map(fn, jobs, failures)
+            out[0] = {"__error__": "RuntimeError: no convergence"}
+            return out
+
+    sim = d._Simulator("m.toml", [d.Point("")], C, 1, [], as_recorded={"DE_y_m": 1e-6}, realisations=3)
+    sim.pool = Failing()
+    bad, good = sim.features([["a=1"], ["a=2"]])
+    assert "__error__" in bad[0]
+    assert good[0]["x_m"][0] == pytest.approx(d.MODEL_READ_SEED + 1.0)   # reads 0, 1, 2 of drop 0
