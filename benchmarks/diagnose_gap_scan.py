@@ -59,8 +59,10 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
     """``records`` > 1: the "measurement" is that many records of repeated landings, each dropped
     from its own random point within 5 um (seeded), compared as their mean features (diagnose's
     ``Repeated``) with the model's ensembles (``ensemble`` drops of radius ``radius_m``).
-    ``as_recorded``: every model drop read 8 times through the records' sensor model, as diagnose
-    compares since session 46 (``_Simulator.as_recorded``; seeds common to every mu)."""
+    ``as_recorded``: every model drop read 8 times through the records' sensor model (the last
+    record's; ``_Simulator.as_recorded``, seeds common to every mu), diagnose's reads since session
+    46. Not quite diagnose's comparison: the drops stay on this scan's circle, and the ensemble is
+    the mean of each drop's mean read (diagnose: one mean over drops and reads)."""
     import numpy as np
     from sensor_model import C, known_rig_model, write_record
 

@@ -62,7 +62,8 @@ NOISE_MEMBERS = 4
 #: noise left in the model's mean features is that of 1/8 of a record's (a read, logger sampling,
 #: noise and feature extraction, costs about 5 ms against a 0.2-0.8 s landing; docs/performance.md)
 MODEL_REALISATIONS = 8
-#: the seed of the model's reads (drop k: [MODEL_READ_SEED + k, read]), apart from the members'
+#: the seed of the model's reads (drop k of point j: [MODEL_READ_SEED + 1000 j + k, read]), apart
+#: from the members' (seeds 0 ... members x records - 1)
 MODEL_READ_SEED = 10000
 #: a named effect must remove at least this share of the remaining gap; with two missing effects
 #: the first one found can only remove its own part (e.g. 48 % for windage + ribbon cross-coupling)
@@ -220,7 +221,8 @@ class _Simulator:
         self.realisations = max(1, int(realisations))
         self.pool = Pool(workers, blas_threads=None)  # BLAS as before (runner.worker_setup says why)
         self.count = 0
-        # > 1: every model variant is an ensemble of drops from a 5 um circle and its features are
+        # > 1: every model variant is an ensemble of drops (from a 5 um circle; over its disc when
+        # read as repeated records are) and its features are
         # the ensemble's statistics (features.ensemble_features), so the gap does not hinge on one
         # chaotic trajectory (issue 20, point 1)
         self.ensemble = ensemble
@@ -228,8 +230,8 @@ class _Simulator:
         # the number of measured records whose mean features are compared (:class:`Repeated`); the
         # noise gate's members are means of as many drops
         self.records = records
-        # noise-free variants already landed (overrides -> features per point): the solver is
-        # deterministic, so a variant asked for twice (the identifiability probes, then the same
+        # variants already landed, noise-free or read with fixed seeds (overrides -> features per
+        # point): the solver is deterministic, so a variant asked for twice (the identifiability probes, then the same
         # values on a calibration's grid or a parameter's screening) is landed once
         self.memo: dict = {}
 
@@ -254,8 +256,9 @@ class _Simulator:
     def features(self, extras: list[list[str]], noise=None, single: bool = False) -> list[list[dict]]:
         """Simulated features at every point for each model variant (all submitted at once);
         ``noise``: sensor noise added to the series (variant i seeded with i); ``single``: one drop
-        per variant even in ensemble mode (the noise gate's members). Noise-free variants landed
-        before in this diagnosis come from :attr:`memo`."""
+        per variant even in ensemble mode (the noise gate's members). Model variants (``noise``
+        None: noise-free, or read with fixed seeds) landed before in this diagnosis come from
+        :attr:`memo`."""
         if noise:
             return self._land(extras, noise, single)
         keys = [(tuple(e), single) for e in extras]
@@ -275,19 +278,21 @@ class _Simulator:
         members = [[]] if single or self.ensemble <= 1 else \
             disc_drop_offsets(self.ensemble, *radius) if self.as_recorded and self.records > 1 else \
             drop_offsets(self.ensemble, *radius)
-        if noise is None and not single and self.as_recorded:
-            # the model's own drops, read as the records are; drop k's reads have the same seeds in
-            # every variant, so a parameter's change is not mixed with a change of noise draws
+        reads = noise is None and not single and bool(self.as_recorded)
+        if reads:
+            # the model's own drops, read as the records are; drop k at point j has the same seeds in
+            # every variant, so a parameter's change is not mixed with a change of noise draws (and
+            # the points' reads are drawn apart from each other)
             jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, self.as_recorded,
-                     MODEL_READ_SEED + k, self.realisations)
-                    for extra in extras for p in self.points for k, off in enumerate(members)]
+                     MODEL_READ_SEED + 1000 * j + k, self.realisations)
+                    for extra in extras for j, p in enumerate(self.points) for k, off in enumerate(members)]
         else:
             jobs = [(self.scenario_path, self.overrides(p, extra + off), self.clearance, noise, i)
                     for i, extra in enumerate(extras) for p in self.points for off in members]
         self.count += len(jobs)
         out = self.pool.map(_sim_job, jobs, failures="raise")  # _sim_job turns a failed trial into its row
         k = len(members)
-        if k > 1 or any(isinstance(m, list) for m in out):  # the reads of one drop come as a list
+        if k > 1 or reads:  # the reads of one drop come as a list (a failed landing: its error row)
             grouped = [out[j * k:(j + 1) * k] for j in range(len(out) // k)]
             # a drop read several times contributes each read (as many per drop): the features are
             # the mean over drops and reads, the whirl shares over reads
@@ -1261,7 +1266,8 @@ def _noise_gate(sim: _Simulator, sims0: list[dict], members: int, sigma: dict | 
     ``members`` random points of the 5 um disc (``ensemble.random_drop_offset``, seeded: a real
     rotor is never dropped exactly centred, and a rattling landing is chaotic), with the measured
     record's own sensor noise added to its series; each member, taken as the measurement, against
-    the centred drop. Against an ensemble model (``sim.ensemble`` > 1) a single record's members
+    the model as the gap compares it (``sims0``: the centred drop or the ensemble, read through the
+    records' sensor model since session 46). Against an ensemble model (``sim.ensemble`` > 1) a single record's members
     fall between the ensemble's drop points on the circle.
     The gate is the one-sided 95 % prediction bound of one more member gap, mean + t(0.95, k-1)
     sqrt(1 + 1/k) s over the k member gaps (at least their largest), never below ``NOISE_GAP_MIN``

@@ -79,8 +79,10 @@ class _Recorder:
         out = []
         for j in jobs:
             reads = j[5] if len(j) > 5 else 0
-            one = {"x_m": (float(j[4]), 1.0)}
-            out.append([{"x_m": (float(j[4]) + m, 1.0)} for m in range(reads)] if reads else one)
+            # the variant's own value (its last "a=" override) in a feature of its own
+            a = next((float(o.split("=")[1]) for o in reversed(j[1]) if o.startswith("a=")), 0.0)
+            one = {"x_m": (float(j[4]), 1.0), "a_m": (a, 1.0)}
+            out.append([{"x_m": (float(j[4]) + m, 1.0), "a_m": (a, 1.0)} for m in range(reads)] if reads else one)
         return out
 
     def close(self):
@@ -106,7 +108,12 @@ def test_the_models_drops_are_read_with_seeds_common_to_every_variant(tmp_path):
         assert [j[1][-1] for j in variant] == [o[0] for o in disc_drop_offsets(4)]
     # the mean of 4 drops x 3 reads: seeds 10000-10003 plus reads 0-2
     want = np.mean([d.MODEL_READ_SEED + k + m for k in range(4) for m in range(3)])
-    assert out[0][0]["x_m"][0] == pytest.approx(want)
+    assert out[0][0]["x_m"][0] == pytest.approx(want) and out[1][0]["x_m"][0] == pytest.approx(want)
+    assert (out[0][0]["a_m"][0], out[1][0]["a_m"][0]) == (1.0, 2.0)    # each variant its own group
+    # a variant asked for again (another batch, another position) is not landed again
+    sim.pool.jobs = []
+    again = sim.features([["a=2"]])
+    assert sim.pool.jobs == [] and again[0] == out[1]
     sim.pool.jobs = []
     sim.features([["a=1"], ["a=1"]], noise=sensor, single=True)
     assert [(j[4], len(j)) for j in sim.pool.jobs] == [(0, 5), (1, 5)]
@@ -141,3 +148,14 @@ def test_a_failed_drop_stays_a_failed_variant_when_the_model_is_read():
     bad, good = sim.features([["a=1"], ["a=2"]])
     assert "__error__" in bad[0]
     assert good[0]["x_m"][0] == pytest.approx(d.MODEL_READ_SEED + 1.0)   # reads 0, 1, 2 of drop 0
+
+
+def test_two_points_draw_their_reads_apart():
+    """Two operating points, one drop each, read twice: the points' reads have seeds of their own (drop k of point
+    j: MODEL_READ_SEED + 1000 j + k), so the noise left in the model's features is not alike at both."""
+    sim = d._Simulator("m.toml", [d.Point("p0", ["s=1"]), d.Point("p1", ["s=2"])], C, 1, [],
+                       as_recorded={"DE_y_m": 1e-6}, realisations=2)
+    sim.pool = _Recorder()
+    (p0, p1), = sim.features([["a=3"]])
+    assert [j[4] for j in sim.pool.jobs] == [d.MODEL_READ_SEED, d.MODEL_READ_SEED + 1000]
+    assert p0["a_m"][0] == p1["a_m"][0] == 3.0 and p1["x_m"][0] - p0["x_m"][0] == pytest.approx(1000.0)

@@ -45,6 +45,9 @@ def test_noise_gate_from_the_data_keeps_a_chaotic_clean_control_silent(tmp_path)
     assert res["named_effect"] is None and res["named_parameters"] == [] and res["explanation"] == "none"
     assert len(res["noise"]["member_gaps"]) == 4 and "sensor noise" in res["noise"]["source"]
     assert res["noise"]["source"].endswith("of its 6 channels")      # the members are made of the record's
+    # ... and so is the model the gap compares (session 46): its drop read through the record's noise, logger, channels
+    assert res["model_read"].startswith("the centred drop, each read 8 times through the records' sensor model")
+    assert "Hz logger with a random phase, their channels" in res["model_read"]
     # the gate is at least the largest member gap and the stated prediction bound of them
     g = res["noise"]["member_gaps"]
     mean = sum(g) / len(g)

@@ -59,6 +59,8 @@ OWN_NOISE = __import__("os").environ.get("OWN_NOISE", "0") == "1"
 # OWN=read (session 46): the model as diagnose now compares it (_Simulator's as_recorded: R drops over the disc,
 # or the centred one for one record, each read 8 times through the records' sensor model and channels)
 OWN_READ = __import__("os").environ.get("OWN", "circle") == "read"
+if OWN_READ and not DIAGNOSE_GATE:
+    raise SystemExit("diagnose_information.py: OWN=read needs GATE=diagnose (the records' logger rate for the reads)")
 
 
 def own_offsets(n):
