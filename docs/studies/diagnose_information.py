@@ -50,8 +50,8 @@ FLOOR = 0.1  # whitened scale never below this share of the fixed scale (main: t
 OUT = ROOT / 'docs' / 'studies' / 'diagnose_information'
 
 
-# OWN=disc (session 45): the model's own R drops spread over the disc the records fall from (a sunflower layout:
-# radius sqrt((k + 1/2) / R) times the disc's, golden-angle steps), not on its rim as diagnose's ensemble has them
+# OWN=disc (session 45): the model's own R drops spread over the disc the records fall from
+# (ensemble.disc_drop_offsets, the layout diagnose's reads use since session 46), not on its rim
 OWN_DISC = __import__("os").environ.get("OWN", "circle") == "disc"
 # OWN_NOISE=1 (session 45): the model's own drops get the records' sensor noise and logger rate too, so a noisy
 # extreme (a displacement's min / max, the first rebound) is biased alike in the records and the model
@@ -64,11 +64,8 @@ if OWN_READ and not DIAGNOSE_GATE:
 
 
 def own_offsets(n):
-    if not OWN_DISC:
-        return drop_offsets(n)
-    from rotorlanding.ensemble import _offset
-    golden = math.pi * (3.0 - math.sqrt(5.0))
-    return [_offset(DROP_RADIUS_M * math.sqrt((k + 0.5) / n), k * golden) for k in range(n)]
+    from rotorlanding.ensemble import disc_drop_offsets
+    return disc_drop_offsets(n) if OWN_DISC else drop_offsets(n)
 
 
 def gate_of(gaps):
