@@ -66,7 +66,7 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
     import numpy as np
     from sensor_model import C, known_rig_model, write_record
 
-    from rotorlanding.diagnose_run import CHANNELS_KEY, RATE_KEY, Point, _Simulator, measured_for_diagnosis
+    from rotorlanding.diagnose_run import Point, _Simulator, measured_for_diagnosis, records_sensor_model
     from rotorlanding.ensemble import drop_offsets, random_drop_offset
     from rotorlanding.features import ensemble_features, gap_points
 
@@ -85,7 +85,7 @@ def scan(mus, ensemble: int, radius_m: float, workers: int, truth: float = 0.22,
             meas = ensemble_features(feats)
         out = {"mu_rad": list(mus), "truth": truth, "ensemble": ensemble, "radius_m": radius_m, "records": records,
                "as_recorded": as_recorded}
-        sensor = {**info["sensor_noise"], RATE_KEY: info["sampling_rate_hz"], CHANNELS_KEY: tuple(info["channels"])}
+        sensor = records_sensor_model(info["sensor_noise"], info["sampling_rate_hz"], info["channels"])
         sim = _Simulator(model, [Point("", [], meas)], C, workers, [], as_recorded=sensor if as_recorded else None)
         try:
             out["single"] = [r[0] for r in sim.gaps([[f"contact.mu_rad={mu!r}"] for mu in mus])]

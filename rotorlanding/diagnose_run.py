@@ -331,6 +331,22 @@ RATE_KEY = "_sampling_rate_hz"
 CHANNELS_KEY = "_channels"
 
 
+def records_sensor_model(noise: dict | None, rate: float | None = None, channels=None) -> dict | None:
+    """The records' sensor model as the gate's members and the model's reads take it
+    (:func:`_as_recorded`): the per-channel noise, with the logger's rate under :data:`RATE_KEY`
+    (the members are sampled as the record was) and the record's channels under
+    :data:`CHANNELS_KEY` (a member has the rows the record's gap has), each where known; a key
+    already there is kept. No noise: None (the model is compared noise-free)."""
+    if not noise:
+        return None
+    out = dict(noise)
+    if rate and RATE_KEY not in out:
+        out[RATE_KEY] = float(rate)
+    if channels and CHANNELS_KEY not in out:
+        out[CHANNELS_KEY] = tuple(channels)
+    return out
+
+
 def record_rate(m: Measurement) -> float | None:
     """The record's sampling rate (Hz): the median step of its DE vertical channel (else its first)."""
     if not m.channels:
@@ -946,13 +962,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     if sensor_noise_sigma is None:
         sensor_noise_sigma = info.get("sensor_noise")
     rate = info.get("sampling_rate_hz") or (record_rate(measured) if isinstance(measured, Measurement) else None)
-    if sensor_noise_sigma and rate and RATE_KEY not in sensor_noise_sigma:
-        # the gate's members are sampled as the record was (_simulate_features)
-        sensor_noise_sigma = {**sensor_noise_sigma, RATE_KEY: rate}
     channels = info.get("channels") or (sorted(measured.channels) if isinstance(measured, Measurement) else None)
-    if sensor_noise_sigma and channels and CHANNELS_KEY not in sensor_noise_sigma:
-        # ... and made of the record's channels (_simulate_features)
-        sensor_noise_sigma = {**sensor_noise_sigma, CHANNELS_KEY: tuple(channels)}
+    sensor_noise_sigma = records_sensor_model(sensor_noise_sigma, rate, channels)
     base = load_scenario(scenario_path, base_overrides)
     if parameters is None:
         parameters = [k for k in DEFAULT_PARAMETERS if k in base.bounds]

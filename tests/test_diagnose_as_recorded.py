@@ -159,3 +159,17 @@ def test_two_points_draw_their_reads_apart():
     (p0, p1), = sim.features([["a=3"]])
     assert [j[4] for j in sim.pool.jobs] == [d.MODEL_READ_SEED, d.MODEL_READ_SEED + 1000]
     assert p0["a_m"][0] == p1["a_m"][0] == 3.0 and p1["x_m"][0] - p0["x_m"][0] == pytest.approx(1000.0)
+
+
+def test_the_records_sensor_model_is_put_together_in_one_place():
+    """diagnose, the gap scan and the studies build the records' sensor model with one function:
+    the noise, the logger rate and the channels where known, a key already there kept, and no
+    sensor model at all without noise (the model then compared noise-free)."""
+    noise = {"DE_y_m": 1e-6, "rotor_speed_rpm": 2.0}
+    full = d.records_sensor_model(noise, 4000, ["DE_y_m", "rotor_speed_rpm"])
+    assert full == {**noise, d.RATE_KEY: 4000.0, d.CHANNELS_KEY: ("DE_y_m", "rotor_speed_rpm")}
+    assert noise == {"DE_y_m": 1e-6, "rotor_speed_rpm": 2.0}                  # the input is not changed
+    assert d.records_sensor_model(noise) == noise                             # rate and channels unknown
+    assert d.records_sensor_model(full, 10000, ["DE_y_m"]) == full            # keys already there are kept
+    assert d.records_sensor_model({}, 4000, ["DE_y_m"]) is None
+    assert d.records_sensor_model(None, 4000) is None

@@ -122,7 +122,7 @@ def test_a_gate_member_is_made_of_the_records_channels(tmp_path):
     record's gap never has (the bench's strong contact damping, 4 records: gate 0.510, 0.206 on the
     record's channels). A record without NDE_y_m and without forces: the member's features are the
     record's, row for row; without the channel list it has the force and NDE rows as well."""
-    from rotorlanding.diagnose_run import CHANNELS_KEY, RATE_KEY, _simulate_features
+    from rotorlanding.diagnose_run import _simulate_features, records_sensor_model
 
     model = _model(tmp_path, [])
     csv = tmp_path / "rig.csv"
@@ -130,8 +130,8 @@ def test_a_gate_member_is_made_of_the_records_channels(tmp_path):
     write_record(model, [], csv, clearance=C, seed=3, fs_hz=5000.0, channels=chans)
     _, _, meas, info = measured_for_diagnosis(model, csv, [], None)
     assert info["channels"] == sorted(chans)
-    noise = {**info["sensor_noise"], RATE_KEY: info["sampling_rate_hz"]}
-    member = _simulate_features(model, [], C, noise={**noise, CHANNELS_KEY: tuple(info["channels"])}, seed=1)
+    noise = records_sensor_model(info["sensor_noise"], info["sampling_rate_hz"])
+    member = _simulate_features(model, [], C, noise=records_sensor_model(noise, channels=info["channels"]), seed=1)
     every = _simulate_features(model, [], C, noise=noise, seed=1)
     assert set(member) == set(meas)
     assert {k for k in every if "force" in k or k.startswith("NDE_")} - set(member) >= {"DE_force_peak_n",

@@ -23,6 +23,9 @@ RECORDS=1 (session 45): the one record the bench writes with --repeats 1 (its se
 diagnose_bench.run_case), against the centred drop, as diagnose compares one record.
 OWN=read (session 46): the model as diagnose compares it since session 46 (each drop read through the records'
 sensor model; needs GATE=diagnose); JSONs end in _read.json.
+OWN_DROPS=M (session 47, with OWN=read and RECORDS > 1): the model's own features from M drops over the disc, not R,
+so the as-is and true models' gaps are their expected values, not one draw of R chaotic drops (the gate's members
+stay means of R drops, as the records are); JSONs end in _read_ownM.json.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -61,6 +64,10 @@ OWN_NOISE = __import__("os").environ.get("OWN_NOISE", "0") == "1"
 OWN_READ = __import__("os").environ.get("OWN", "circle") == "read"
 if OWN_READ and not DIAGNOSE_GATE:
     raise SystemExit("diagnose_information.py: OWN=read needs GATE=diagnose (the records' logger rate for the reads)")
+# OWN_DROPS=M (session 47): the model's own drops per variant (default R, as diagnose)
+OWN_DROPS = int(__import__("os").environ.get("OWN_DROPS", "0")) or None
+if OWN_DROPS and not (OWN_READ and R > 1):
+    raise SystemExit("diagnose_information.py: OWN_DROPS needs OWN=read and RECORDS > 1 (drops over the records' disc)")
 
 
 def own_offsets(n):
@@ -152,14 +159,13 @@ def main(argv):
             clearance, _, meas1, info = measured_for_diagnosis(model, recs[0], [], None)
         else:
             clearance, _, meas, info = records_for_diagnosis(model, recs, [])
-        if DIAGNOSE_GATE and info.get('sampling_rate_hz') and info.get('sensor_noise'):
-            from rotorlanding.diagnose_run import RATE_KEY
-            info['sensor_noise'] = {**info['sensor_noise'], RATE_KEY: info['sampling_rate_hz']}
+        from rotorlanding.diagnose_run import records_sensor_model
+        if DIAGNOSE_GATE:
+            info['sensor_noise'] = records_sensor_model(info['sensor_noise'], info.get('sampling_rate_hz'))
         mm = _journal_rows(ensemble_features(meas.features) if R > 1 else meas1, DEFAULT_JOURNALS)
         if OWN_READ:
-            from rotorlanding.diagnose_run import CHANNELS_KEY
-            info['sensor_noise'] = {**info['sensor_noise'], CHANNELS_KEY: tuple(info['channels'])}
-        sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=R, records=R,
+            info['sensor_noise'] = records_sensor_model(info['sensor_noise'], None, info['channels'])
+        sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=OWN_DROPS or R, records=R,
                          as_recorded=info['sensor_noise'] if OWN_READ else None)
         try:
             res = {'case': name, 'as_is': analyse(sim, mm, [], info['sensor_noise'])}
@@ -179,7 +185,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
