@@ -538,6 +538,42 @@ def _fit_1d(sim: _Simulator, fixed: list[str], p, maxiter: int, cache: dict | No
     return {"gap": g, "rows": rows, "x": x, "sims": sims, "evaluations": len(cache), "cache": cache}
 
 
+def fit_span(cache: dict, member_gaps: list[float], z: float | None = None) -> dict | None:
+    """The fit's own uncertainty, as far as its evaluated values show it (issue 20, point 1: "a
+    calibration that reports its own uncertainty"): the values whose gap lies within ``z``
+    standard deviations of the noise members' gaps above the best gap. Those the data cannot rank
+    against the best, as a record's noise and drop point alone move a gap by about that much
+    (the same rule as calibrate's ``within_noise``, ``z`` its NOISE_Z = 2). ``cache``: a
+    :func:`_fit_1d` cache (search variable -> (gap, rows, value, sims)). The values within are
+    grouped into ranges of neighbours among the evaluated values, sorted: more than one range
+    means separate dips, so the value is not one basin's minimum and the data do not fix it
+    (the four-record bench's mu_rad 0.3: dips at 0.19, 0.25 and 0.30, docs/measured_data.md,
+    session 47). None without two finite member gaps or two finite evaluated gaps. Values are the
+    parameter's own (not the search variable of a log parameter)."""
+    if z is None:
+        from .calibrate_run import NOISE_Z as z
+    members = [g for g in member_gaps if math.isfinite(g)]
+    pts = sorted((float(x), float(g)) for g, _, x, _ in cache.values() if math.isfinite(g))
+    if len(members) < 2 or len(pts) < 2:
+        return None
+    margin = z * float(np.std(members, ddof=1))
+    best_x, best = min(pts, key=lambda t: t[1])
+    ranges, run = [], None
+    for x, g in pts:
+        if g <= best + margin:
+            run = [x, x] if run is None else [run[0], x]
+        elif run is not None:
+            ranges.append(run)
+            run = None
+    if run is not None:
+        ranges.append(run)
+    return {"best": best_x, "gap": best, "margin": margin, "z": z, "ranges": ranges,
+            "within": sum(g <= best + margin for _, g in pts), "evaluated": len(pts),
+            # a range that reaches the lowest or highest value evaluated (a grid's: the bound) is
+            # open on that side: the data would allow values beyond it
+            "open_low": ranges[0][0] == pts[0][0], "open_high": ranges[-1][1] == pts[-1][0]}
+
+
 def _calibrate(sim: _Simulator, name: str, terms: list[Term], maxiter: int) -> dict:
     """Switch one effect on (with everything named so far) and fit its parameters on the gap over
     all points (one after the other, each bounded). An effect the scenario cannot take (e.g.
@@ -1005,7 +1041,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
         current_gap, current_rows, current_dirs = gap_before, rows_before, directions_before
         adjusted: list[str] = []
         step_gate, gate_now = gate, None   # gate_now: (overrides, _noise_gate) of the model named so far
-        step_se = noise.get("gate_se")      # the standard error of the gate the step is judged against
+        step_noise = noise                 # the noise gate the step is judged against (its members)
+        step_se = noise.get("gate_se")      # ... and its standard error
         own = None                         # (overrides, _noise_gate) of the last step's best candidate
         for k_step in range(max_effects):
             lacking = _lacking(base, named, candidates)
@@ -1090,6 +1127,12 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             significant = significant_by is not None
             # the best of the other kind within 2 score units: the data do not tell them apart
             rival = next((r for r in results[1:] if r["kind"] != best["kind"] and math.isfinite(r["score"])), None)
+            # what the best candidate's (first) parameter's 1-D fit cannot tell from its best value
+            nf = best.get("null_fit")
+            span = fit_span(nf["cache"], step_noise.get("member_gaps", [])) if nf and math.isfinite(best["gap"]) \
+                else None
+            if span:
+                span["parameter"] = nf["param"].name
             keys = ("effect", "kind", "gap", "parameters", "from", "bound", "score", "directions", "evaluations",
                     "screened_only", "not_applicable", "failed", "rows", "refit")
             steps.append({"gap_before": current_gap, "base_score": base_score,
@@ -1106,6 +1149,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                           and rival["score"] < best["score"] + 2.0 else None,
                           "gate": step_gate, "gate_margin": gate_margin(current_gap, step_gate, step_se),
                           "own_gate": own[1]["gate"] if own else None, "directed": directed_info,
+                          "fit_span": span,
                           "significant_by": significant_by})
             if not significant:
                 break
@@ -1134,7 +1178,8 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                                        journals=journals))
                     noise_history.append(gate_now[1]["gate"])
                 step_gate = min(gate, gate_now[1]["gate"])
-                step_se = (noise if step_gate == gate else gate_now[1]).get("gate_se")
+                step_noise = noise if step_gate == gate else gate_now[1]
+                step_se = step_noise.get("gate_se")
         if terms and noise_gap is None:
             # what stays unexplained is judged against the gate of the final model: a landing with the
             # named changes can be more (or less) chaotic than without them. When the last step named
@@ -1449,6 +1494,24 @@ def _margin_text(label: str, m: dict) -> str | None:
     return text
 
 
+def _span_text(sp: dict) -> str:
+    """A fit's uncertainty (:func:`fit_span`) in words."""
+    def rng(r):
+        return f"{r[0]:.4g}" if r[0] == r[1] else f"{r[0]:.4g}-{r[1]:.4g}"
+
+    text = (f"{sp['parameter']}, fitted on its own: the values within {sp['z']:g} x {sp['margin'] / sp['z']:.3f} of "
+            f"the best gap {sp['gap']:.3f} (that many standard deviations of the noise members' gaps: the data "
+            f"cannot rank them) are {', '.join(rng(r) for r in sp['ranges'])} ({sp['within']} of the "
+            f"{sp['evaluated']} values evaluated)")
+    if len(sp["ranges"]) > 1:
+        text += (f": **{len(sp['ranges'])} separate dips**, so these data do not fix the value (the gap is not one "
+                 "basin here; more records narrow it)")
+    ends = [e for e, o in (("lowest", sp["open_low"]), ("highest", sp["open_high"])) if o]
+    if ends:
+        text += f"; open at the {' and '.join(ends)} value evaluated (the bound)"
+    return text
+
+
 def _step_lines(steps: list[dict]) -> list[str]:
     """The report's lines on each step's joint re-fit and rival. A step's re-fit is of the terms
     named before it together with the step's best candidate: when that candidate is not named (the
@@ -1465,6 +1528,8 @@ def _step_lines(steps: list[dict]) -> list[str]:
             else:
                 lines.append(f"Step {i}: the best candidate, {best}, re-fitted jointly with everything named before it: "
                              f"{fit}; not named (it does not pay for itself or stays within the noise).")
+        if stp.get("named") and stp.get("fit_span"):
+            lines.append(f"Step {i}: " + _span_text(stp["fit_span"]) + ".")
         said = _margin_text("it started from", stp["gate_margin"]) if i > 1 and stp.get("gate_margin") else None
         if said:
             lines.append(f"Step {i}: the {said}.")

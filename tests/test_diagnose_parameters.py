@@ -25,9 +25,12 @@ def heavy_hub(tmp_path_factory):
     return model, meas, info, d
 
 
-def test_a_wrong_mass_is_reported_as_a_wrong_parameter_not_a_missing_effect(heavy_hub):
+def test_a_wrong_mass_is_reported_as_a_wrong_parameter_not_a_missing_effect(heavy_hub, tmp_path):
     """Measured: gap 1.15 -> 0.07 with the hub at 7.06 kg; the best effect (ribbon cross-coupling,
-    the issue's wrong answer for a heavier hub) only reaches 1.03."""
+    the issue's wrong answer for a heavier hub) only reaches 1.03. The report gives the fit's own
+    uncertainty: the masses evaluated that fit within the noise members' scatter of the best."""
+    from rotorlanding.diagnose_run import write_report
+
     model, meas, info, d = heavy_hub
     res = diagnose(meas, model, clearance=C, candidates=["windage", "ribbon_cross_coupling"], workers=2,
                    maxiter=5, info=info)
@@ -38,6 +41,12 @@ def test_a_wrong_mass_is_reported_as_a_wrong_parameter_not_a_missing_effect(heav
     assert res["gap_after"] <= 0.5 * res["gap_before"] and not res["unexplained"]
     effects = [c for c in res["steps"][0]["candidates"] if c["kind"] == "effect"]
     assert min(c["gap"] for c in effects) > 2 * res["gap_after"]
+    span = res["steps"][0]["fit_span"]
+    assert span["parameter"] == "rotor.disks.3.mass" and span["best"] == q["to"]
+    assert any(lo <= q["to"] <= hi for lo, hi in span["ranges"]) and span["evaluated"] >= 9
+    assert span["margin"] > 0 and span["within"] < span["evaluated"]   # the data do rule masses out
+    write_report(res, tmp_path, None, model, C)
+    assert "rotor.disks.3.mass, fitted on its own: the values within 2 x" in (tmp_path / "report.md").read_text()
 
 
 def test_without_the_right_candidate_the_report_says_unexplained(heavy_hub, tmp_path):
