@@ -209,11 +209,31 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
             "unseen": ",".join(c["name"] for c in res["identifiability"]["candidates"] if c.get("detectable") is False)
             or "-",
             "alike": ";".join(f"{q['a']}/{q['b']}" for q in res["identifiability"]["pairs"] if not q["told_apart"])
-            or "-"}
+            or "-",
+            # the calibration's own uncertainty (diagnose_run.fit_span) at each named step, and whether
+            # it holds the true value where the step's parameter is one the case set
+            "fit_span": json.dumps([{k: s_[k] for k in ("parameter", "best", "ranges")} for s_ in spans(res)],
+                                   default=float),
+            "span_covers_truth": span_covers(case, res)}
+
+
+def spans(res: dict) -> list[dict]:
+    """The fit spans of the steps that named something."""
+    return [st["fit_span"] for st in res["steps"] if st.get("named") and st.get("fit_span")]
+
+
+def span_covers(case: dict, res: dict) -> str:
+    """Per named step whose calibrated parameter the case set ("key=value" in its truth): "yes" when
+    the true value lies in one of the fit span's ranges, else "no"; "-" when no step applies."""
+    truth = dict(x.split("=", 1) for x in case["sets"] if not x.startswith("effects."))
+    out = [("yes" if any(lo <= float(truth[sp["parameter"]]) <= hi for lo, hi in sp["ranges"]) else "no")
+           for sp in spans(res) if sp["parameter"] in truth]
+    return ",".join(out) or "-"
 
 
 FIELDS = ["case", "kind", "truth", "truth_sets", "named", "explanation", "gap_before", "gap_after", "noise_gate",
-          "right", "time_s", "simulations", "fs_hz", "channels_missing", "fitted", "unseen", "alike"]
+          "right", "time_s", "simulations", "fs_hz", "channels_missing", "fitted", "unseen", "alike", "fit_span",
+          "span_covers_truth"]
 
 
 def rates(rows: list[dict]) -> dict:

@@ -56,3 +56,21 @@ def test_no_span_without_members_or_values_and_failed_landings_left_out():
     assert d.fit_span(_cache(xs, [0.5, math.inf, math.inf]), MEMBERS) is None  # one finite gap
     sp = d.fit_span(_cache(xs, [0.25, math.inf, 0.3]), MEMBERS)
     assert sp["evaluated"] == 2 and sp["ranges"] == [[1.0, 3.0]]              # the failed one is no break
+
+
+def test_the_bench_checks_whether_the_span_holds_the_true_value():
+    """benchmarks/diagnose_bench.span_covers: per named step whose parameter the case set, whether
+    the truth lies in the fit's span (the coverage of the reported uncertainty, judged on the bench)."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    import diagnose_bench as bench
+
+    case = {"sets": ["effects.windage=true", "spin.c_w2=1.5e-06"]}
+    step = {"named": "windage", "fit_span": {"parameter": "spin.c_w2", "best": 1.4e-6, "ranges": [[1.2e-6, 1.6e-6]]}}
+    assert bench.span_covers(case, {"steps": [step, {"named": None}]}) == "yes"
+    step["fit_span"]["ranges"] = [[1e-7, 1.2e-6], [1.7e-6, 2e-6]]
+    assert bench.span_covers(case, {"steps": [step]}) == "no"
+    assert bench.span_covers({"sets": ["effects.windage=false"]}, {"steps": [step]}) == "-"
+    assert bench.span_covers(case, {"steps": [{**step, "named": None}]}) == "-"   # not named: not judged
