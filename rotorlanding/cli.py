@@ -556,8 +556,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="comma-separated [bounds] keys tried as wrong-parameter candidates, or none "
                          "(default: rotorlanding.diagnose_run.DEFAULT_PARAMETERS the scenario bounds)")
     dg.add_argument("--ensemble", type=int, default=1,
-                    help="drops per model variant (from a 5 um circle); features become the ensemble's "
-                         "statistics, a gap smooth in the parameters (default 1: one drop)")
+                    help="drops per model variant (from a 5 um circle; over its disc with repeated records); "
+                         "features become the ensemble's statistics, a gap smooth in the parameters (default 1: one "
+                         "drop, or as many as the records; with records at least as many)")
     dg.add_argument("--ensemble-radius-m", type=float, default=None,
                     help="radius of the drop circle of --ensemble [m] (default 5e-6, an AMB's position error)")
     dg.add_argument("--journals", default="DE",

@@ -181,3 +181,17 @@ def test_naming_rule_own_gate_and_its_guards():
     # named below the gate only through a feature noise cannot produce, and the reason says so
     assert named_by(True, True, False, 0.05, None, 0.25, 0.3) == \
         "relative improvement, a feature noise cannot produce"
+
+
+def test_repeated_records_take_a_model_of_as_many_drops_or_more():
+    """With R records the model lands R drops per variant by default, or more when asked (its
+    features nearer their expectation); fewer would be noisier than the data and are refused with
+    the option, the value and what is allowed."""
+    from rotorlanding.diagnose_run import _records_ensemble
+    from rotorlanding.errors import InputError
+
+    assert _records_ensemble(4, 1) == 4
+    assert _records_ensemble(4, 4) == 4 and _records_ensemble(4, 16) == 16
+    with pytest.raises(InputError) as e:
+        _records_ensemble(4, 2, "--ensemble")
+    assert e.value.field == "--ensemble" and e.value.value == 2 and "at least 4" in e.value.allowed

@@ -16,7 +16,7 @@ whirl direction made right, a remainder inside the candidate's own gate), so a c
 reported as "named by another route". The gates are one draw of 4 members each (standard error about 1.1 times
 the members' spread), so a ratio within 0.9-1.1 of its gate is a coin toss; such cases are flagged.
 
-usage: python docs/studies/diagnose_ceiling.py [RECORDS] [BENCH_CSV or -] [_H or ""] [_read] > docs/studies/diagnose_ceiling_R4.md
+usage: python docs/studies/diagnose_ceiling.py [RECORDS] [BENCH_CSV or -] [_H or ""] [_read or _read_ownM] > docs/studies/diagnose_ceiling_R4.md
 (outputs of session 45: diagnose_ceiling_R1.md, _R4.md against the bench's one-record and four-record runs of
 session 44, _R8_H.md without a tool run)
 """
@@ -79,12 +79,13 @@ def main(argv):
     records = int(argv[0]) if argv else 4
     bench = argv[1] if len(argv) > 1 else str(ROOT / "benchmarks" / "results" / "diagnose_bench_s44_rep4.csv")
     suffix = argv[2] if len(argv) > 2 else ""  # "_H": the probe's records with load cells (FORCE_KIND=housing)
-    tail = argv[3] if len(argv) > 3 else ""  # "_read": the probe's OWN=read (the model as diagnose reads it, s46)
+    tail = argv[3] if len(argv) > 3 else ""  # "_read": the probe's OWN=read (the model as diagnose reads it, s46);
+    # "_read_own16": with OWN_DROPS=16 as well (session 47)
     rows = {} if bench == "-" else {r["case"]: r for r in csv.DictReader(Path(bench).open())}
     cells = " with load cells (FORCES=20 FORCE_KIND=housing)" if suffix == "_H" else ""
     print(f"# What the bench's records allow diagnose's rule, {records} record{'s' if records > 1 else ''}{cells}"
           f" (`{Path(__file__).name}`)\n")
-    print(f"Probe: `diagnose_information.py` with RECORDS={records}{cells} GATE=diagnose ROWS=data{' OWN=read (the model read as the records are, diagnose since session 46)' if tail == '_read' else ''}; tool: "
+    print(f"Probe: `diagnose_information.py` with RECORDS={records}{cells} GATE=diagnose ROWS=data{' OWN=read (the model read as the records are, diagnose since session 46)' if tail.startswith('_read') else ''}{(' OWN_DROPS=' + tail.split('_own')[1] + ' (the model from that many drops over the disc, not one draw of ' + str(records) + ')') if '_own' in tail else ''}; tool: "
           + ("not run" if bench == "-" else f"`{Path(bench).name}`") + ".\n")
     print("| case | kind | records allow | tool | what the records give |")
     print("|---|---|---|---|---|")
