@@ -212,7 +212,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
             or "-",
             # the calibration's own uncertainty (diagnose_run.fit_span) at each named step, and whether
             # it holds the true value where the step's parameter is one the case set
-            "fit_span": json.dumps([{k: s_[k] for k in ("parameter", "best", "ranges")} for s_ in spans(res)],
+            "fit_span": json.dumps([{k: s_[k] for k in ("keys", "best", "ranges")} for s_ in spans(res)],
                                    default=float),
             "span_covers_truth": span_covers(case, res)}
 
@@ -223,11 +223,15 @@ def spans(res: dict) -> list[dict]:
 
 
 def span_covers(case: dict, res: dict) -> str:
-    """Per named step whose calibrated parameter the case set ("key=value" in its truth): "yes" when
-    the true value lies in one of the fit span's ranges, else "no"; "-" when no step applies."""
+    """Per named step whose calibrated parameter the case set (one of the span's scenario keys as
+    "key=value" in its truth): "yes" when the true value lies in one of the fit span's ranges, else
+    "no"; "-" when no step applies."""
     truth = dict(x.split("=", 1) for x in case["sets"] if not x.startswith("effects."))
-    out = [("yes" if any(lo <= float(truth[sp["parameter"]]) <= hi for lo, hi in sp["ranges"]) else "no")
-           for sp in spans(res) if sp["parameter"] in truth]
+    out = []
+    for sp in spans(res):
+        key = next((k for k in sp["keys"] if k in truth), None)
+        if key is not None:
+            out.append("yes" if any(lo <= float(truth[key]) <= hi for lo, hi in sp["ranges"]) else "no")
     return ",".join(out) or "-"
 
 

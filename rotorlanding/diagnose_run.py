@@ -1136,7 +1136,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
             span = fit_span(nf["cache"], step_noise.get("member_gaps", [])) if nf and math.isfinite(best["gap"]) \
                 else None
             if span:
-                span["parameter"] = nf["param"].name
+                span["parameter"], span["keys"] = nf["param"].name, list(nf["param"].keys)
             keys = ("effect", "kind", "gap", "parameters", "from", "bound", "score", "directions", "evaluations",
                     "screened_only", "not_applicable", "failed", "rows", "refit")
             steps.append({"gap_before": current_gap, "base_score": base_score,
@@ -1503,7 +1503,7 @@ def _span_text(sp: dict) -> str:
     def rng(r):
         return f"{r[0]:.4g}" if r[0] == r[1] else f"{r[0]:.4g}-{r[1]:.4g}"
 
-    text = (f"{sp['parameter']}, fitted on its own: the values within {sp['z']:g} x {sp['margin'] / sp['z']:.3f} of "
+    text = (f"{', '.join(sp.get('keys') or [sp['parameter']])}, fitted on its own: the values within {sp['z']:g} x {sp['margin'] / sp['z']:.3f} of "
             f"the best gap {sp['gap']:.3f} (that many standard deviations of the noise members' gaps: the data "
             f"cannot rank them) are {', '.join(rng(r) for r in sp['ranges'])} ({sp['within']} of the "
             f"{sp['evaluated']} values evaluated)")

@@ -38,6 +38,9 @@ def test_hidden_windage_is_named_and_the_gap_shrinks(model_without_windage):
     assert res["gap_after"] <= 0.5 * res["gap_before"]
     c_w2 = float(res["calibrated_overrides"][-1].split("=")[1])
     assert c_w2 == pytest.approx(1.5e-6, rel=0.1)
+    # the fit's own uncertainty names the scenario key and holds the truth
+    span = res["steps"][0]["fit_span"]
+    assert span["keys"] == ["spin.c_w2"] and any(lo <= 1.5e-6 <= hi for lo, hi in span["ranges"]), span
 
 
 def test_clean_data_gives_no_false_alarm(model_without_windage):

@@ -36,8 +36,9 @@ def test_separate_dips_are_separate_ranges_and_said_so():
     gaps = [1.54, 1.16, 1.52, 1.54, 1.21, 1.51, 1.41, 1.16, 1.54]
     sp = d.fit_span(_cache(xs, gaps), [0.10, 0.15, 0.20, 0.25])
     assert sp["ranges"] == [[0.19, 0.19], [0.25, 0.25], [0.31, 0.31]]
-    sp["parameter"] = "contact.mu_rad"
+    sp["parameter"], sp["keys"] = "mu_rad", ["contact.mu_rad"]
     text = d._span_text(sp)
+    assert text.startswith("contact.mu_rad, fitted on its own")
     assert "3 separate dips" in text and "0.19, 0.25, 0.31" in text and "do not fix the value" in text
 
 
@@ -68,7 +69,8 @@ def test_the_bench_checks_whether_the_span_holds_the_true_value():
     import diagnose_bench as bench
 
     case = {"sets": ["effects.windage=true", "spin.c_w2=1.5e-06"]}
-    step = {"named": "windage", "fit_span": {"parameter": "spin.c_w2", "best": 1.4e-6, "ranges": [[1.2e-6, 1.6e-6]]}}
+    step = {"named": "windage", "fit_span": {"parameter": "c_w2", "keys": ["spin.c_w2"], "best": 1.4e-6,
+                                             "ranges": [[1.2e-6, 1.6e-6]]}}
     assert bench.span_covers(case, {"steps": [step, {"named": None}]}) == "yes"
     step["fit_span"]["ranges"] = [[1e-7, 1.2e-6], [1.7e-6, 2e-6]]
     assert bench.span_covers(case, {"steps": [step]}) == "no"

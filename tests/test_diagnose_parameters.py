@@ -42,7 +42,7 @@ def test_a_wrong_mass_is_reported_as_a_wrong_parameter_not_a_missing_effect(heav
     effects = [c for c in res["steps"][0]["candidates"] if c["kind"] == "effect"]
     assert min(c["gap"] for c in effects) > 2 * res["gap_after"]
     span = res["steps"][0]["fit_span"]
-    assert span["parameter"] == "rotor.disks.3.mass" and span["best"] == q["to"]
+    assert span["keys"] == ["rotor.disks.3.mass"] and span["best"] == q["to"]
     assert any(lo <= q["to"] <= hi for lo, hi in span["ranges"]) and span["evaluated"] >= 9
     assert span["margin"] > 0 and span["within"] < span["evaluated"]   # the data do rule masses out
     write_report(res, tmp_path, None, model, C)
