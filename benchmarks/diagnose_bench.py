@@ -212,7 +212,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
             or "-",
             # the calibration's own uncertainty (diagnose_run.fit_span) at each named step, and whether
             # it holds the true value where the step's parameter is one the case set
-            "fit_span": json.dumps([{k: s_[k] for k in ("keys", "best", "ranges")} for s_ in spans(res)],
+            "fit_span": json.dumps([{k: s_[k] for k in ("keys", "best", "ranges", "brackets")} for s_ in spans(res)],
                                    default=float),
             "span_covers_truth": span_covers(case, res)}
 
@@ -224,14 +224,17 @@ def spans(res: dict) -> list[dict]:
 
 def span_covers(case: dict, res: dict) -> str:
     """Per named step whose calibrated parameter the case set (one of the span's scenario keys as
-    "key=value" in its truth): "yes" when the true value lies in one of the fit span's ranges, else
-    "no"; "-" when no step applies."""
+    "key=value" in its truth): "yes" when the true value lies in one of the fit span's ranges of
+    values evaluated within the noise, "bracket" when only in a range's bracket (between it and the
+    nearest values evaluated that fit worse: not ruled out), else "no"; "-" when no step applies."""
     truth = dict(x.split("=", 1) for x in case["sets"] if not x.startswith("effects."))
     out = []
     for sp in spans(res):
         key = next((k for k in sp["keys"] if k in truth), None)
         if key is not None:
-            out.append("yes" if any(lo <= float(truth[key]) <= hi for lo, hi in sp["ranges"]) else "no")
+            v = float(truth[key])
+            out.append("yes" if any(lo <= v <= hi for lo, hi in sp["ranges"]) else
+                       "bracket" if any(lo <= v <= hi for lo, hi in sp.get("brackets", [])) else "no")
     return ",".join(out) or "-"
 
 

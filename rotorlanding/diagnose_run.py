@@ -562,16 +562,21 @@ def fit_span(cache: dict, member_gaps: list[float], z: float | None = None) -> d
         return None
     margin = z * float(np.std(members, ddof=1))
     best_x, best = min(pts, key=lambda t: t[1])
-    ranges, run = [], None
-    for x, g in pts:
+    runs, start = [], None   # index ranges of neighbours within
+    for i, (_, g) in enumerate(pts):
         if g <= best + margin:
-            run = [x, x] if run is None else [run[0], x]
-        elif run is not None:
-            ranges.append(run)
-            run = None
-    if run is not None:
-        ranges.append(run)
-    return {"best": best_x, "gap": best, "margin": margin, "z": z, "ranges": ranges,
+            start = i if start is None else start
+        elif start is not None:
+            runs.append((start, i - 1))
+            start = None
+    if start is not None:
+        runs.append((start, len(pts) - 1))
+    ranges = [[pts[a][0], pts[b][0]] for a, b in runs]
+    # the values evaluated show the span only to their spacing: between a range's end and the
+    # nearest value that fits worse the data are silent, so the truth may lie up to that value
+    # (its bracket; a grid of 5 over a friction coefficient's 0.04-0.8 is 0.19 apart)
+    brackets = [[pts[max(a - 1, 0)][0], pts[min(b + 1, len(pts) - 1)][0]] for a, b in runs]
+    return {"best": best_x, "gap": best, "margin": margin, "z": z, "ranges": ranges, "brackets": brackets,
             "within": sum(g <= best + margin for _, g in pts), "evaluated": len(pts),
             # a range that reaches the lowest or highest value evaluated (a grid's: the bound) is
             # open on that side: the data would allow values beyond it
@@ -1506,7 +1511,8 @@ def _span_text(sp: dict) -> str:
     text = (f"{', '.join(sp.get('keys') or [sp['parameter']])}, fitted on its own: the values within {sp['z']:g} x {sp['margin'] / sp['z']:.3f} of "
             f"the best gap {sp['gap']:.3f} (that many standard deviations of the noise members' gaps: the data "
             f"cannot rank them) are {', '.join(rng(r) for r in sp['ranges'])} ({sp['within']} of the "
-            f"{sp['evaluated']} values evaluated)")
+            f"{sp['evaluated']} values evaluated); not ruled out, up to the nearest values that fit worse: "
+            f"{', '.join(rng(r) for r in sp['brackets'])}")
     if len(sp["ranges"]) > 1:
         text += (f": **{len(sp['ranges'])} separate dips**, so these data do not fix the value (the gap is not one "
                  "basin here; more records narrow it)")

@@ -23,6 +23,7 @@ def test_a_v_shaped_gap_gives_one_range_around_its_minimum():
     assert sp["margin"] == pytest.approx(2.0 * np.std(MEMBERS, ddof=1))
     assert sp["best"] == 5.0 and sp["gap"] == pytest.approx(0.2)
     assert sp["ranges"] == [[4.0, 6.0]] and (sp["within"], sp["evaluated"]) == (3, 9)
+    assert sp["brackets"] == [[3.0, 7.0]]    # up to the nearest values that fit worse
     assert not sp["open_low"] and not sp["open_high"]
     # twice the members' scatter: twice as wide
     wide = d.fit_span(_cache(xs, 0.2 + 0.1 * abs(xs - 5.0)), [2 * g for g in MEMBERS])
@@ -36,6 +37,7 @@ def test_separate_dips_are_separate_ranges_and_said_so():
     gaps = [1.54, 1.16, 1.52, 1.54, 1.21, 1.51, 1.41, 1.16, 1.54]
     sp = d.fit_span(_cache(xs, gaps), [0.10, 0.15, 0.20, 0.25])
     assert sp["ranges"] == [[0.19, 0.19], [0.25, 0.25], [0.31, 0.31]]
+    assert sp["brackets"] == [[0.17, 0.21], [0.23, 0.27], [0.29, 0.33]]
     sp["parameter"], sp["keys"] = "mu_rad", ["contact.mu_rad"]
     text = d._span_text(sp)
     assert text.startswith("contact.mu_rad, fitted on its own")
@@ -48,6 +50,7 @@ def test_ranges_are_in_the_parameters_values_and_open_at_a_bound():
     xs = [1e11, 1e12, 1e13, 1e14]
     sp = d.fit_span(_cache(xs, [0.30, 0.35, 0.9, 1.2], log=True), MEMBERS)
     assert sp["ranges"] == [[1e11, 1e12]] and sp["open_low"] and not sp["open_high"]
+    assert sp["brackets"] == [[1e11, 1e13]]  # the bound itself at the open end
     assert "open at the lowest value evaluated" in d._span_text({**sp, "parameter": "contact.k_visc"})
 
 
@@ -74,5 +77,9 @@ def test_the_bench_checks_whether_the_span_holds_the_true_value():
     assert bench.span_covers(case, {"steps": [step, {"named": None}]}) == "yes"
     step["fit_span"]["ranges"] = [[1e-7, 1.2e-6], [1.7e-6, 2e-6]]
     assert bench.span_covers(case, {"steps": [step]}) == "no"
+    step["fit_span"]["brackets"] = [[5e-8, 1.3e-6], [1.6e-6, 2.1e-6]]
+    assert bench.span_covers(case, {"steps": [step]}) == "no"
+    step["fit_span"]["brackets"] = [[5e-8, 1.55e-6], [1.6e-6, 2.1e-6]]
+    assert bench.span_covers(case, {"steps": [step]}) == "bracket"       # not ruled out
     assert bench.span_covers({"sets": ["effects.windage=false"]}, {"steps": [step]}) == "-"
     assert bench.span_covers(case, {"steps": [{**step, "named": None}]}) == "-"   # not named: not judged
