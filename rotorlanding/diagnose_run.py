@@ -547,7 +547,8 @@ def fit_span(cache: dict, member_gaps: list[float], z: float | None = None) -> d
     calibration that reports its own uncertainty"): the values whose gap lies within ``z``
     standard deviations of the noise members' gaps above the best gap. Those the data cannot rank
     against the best, as a record's noise and drop point alone move a gap by about that much
-    (the same rule as calibrate's ``within_noise``, ``z`` its NOISE_Z = 2). ``cache``: a
+    (like calibrate's ``within_noise`` and with its NOISE_Z = 2, but with the members' scatter as
+    the gap's noise where calibrate has each score's standard error). ``cache``: a
     :func:`_fit_1d` cache (search variable -> (gap, rows, value, sims)). The values within are
     grouped into ranges of neighbours among the evaluated values, sorted: more than one range
     means separate dips, so the value is not one basin's minimum and the data do not fix it
