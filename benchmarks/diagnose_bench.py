@@ -179,7 +179,7 @@ def write_records(i: int, case: dict, model: Path, tmp: Path, sen: dict, repeats
 
 def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
              directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0,
-             as_recorded: bool = True) -> dict:
+             as_recorded: bool = True, scatter_scales: bool = False) -> dict:
     from sensor_model import THRUST, known_rig_model
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
@@ -193,7 +193,7 @@ def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ense
                                 else records_for_diagnosis(model, recs, []))
     res = diagnose(meas, model, clearance=clearance, workers=1, maxiter=maxiter, info=info,
                    max_effects=case["max_effects"], journals=journals, ensemble=ensemble, directed=directed,
-                   as_recorded=as_recorded,
+                   as_recorded=as_recorded, scatter_scales=scatter_scales,
                    **({} if noise_members is None else {"noise_members": noise_members}))
     wall = time.perf_counter() - t0
     named = res["named_effects"] + [q["key"] for q in res["named_parameters"]]
@@ -294,6 +294,9 @@ def main(argv=None) -> int:
     ap.add_argument("--noise-free-model", action="store_true",
                     help="diagnose(as_recorded=False): the model's drops noise-free, as diagnose had them until "
                          "session 46 (for an A/B)")
+    ap.add_argument("--scatter-scales", action="store_true",
+                    help="diagnose(scatter_scales=True): each feature's scale widened by the model's own drop scatter "
+                         "(session 48; needs --ensemble or --repeats > 1 to have a scatter beyond the reads)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     if out.is_dir() or a.out.endswith("/"):  # a folder: the table goes inside it, not over it (a crash after case 1)
@@ -315,7 +318,7 @@ def main(argv=None) -> int:
                 continue
             try:
                 row = run_case(i, case, a.maxiter, Path(tmp), tuple(a.journals.split(",")), a.ensemble, a.repeats,
-                               a.directed, a.noise_members, a.load_cells, not a.noise_free_model)
+                               a.directed, a.noise_members, a.load_cells, not a.noise_free_model, a.scatter_scales)
             except Exception as exc:  # noqa: BLE001 - a crashed case is a wrong case, with its reason
                 row = {"case": case["case"], "kind": case["kind"], "truth": "+".join(case["truth"]) or "-",
                        "truth_sets": " ".join(case["sets"]), "named": f"ERROR {type(exc).__name__}: {exc}"[:200],

@@ -206,7 +206,7 @@ class _Simulator:
 
     def __init__(self, scenario_path, points: list[Point], clearance: float, workers: int, base: list[str],
                  ensemble: int = 1, ensemble_radius_m: float | None = None, records: int = 1,
-                 as_recorded: dict | None = None, realisations: int = MODEL_REALISATIONS):
+                 as_recorded: dict | None = None, realisations: int = MODEL_REALISATIONS, scatter: bool = False):
         self.scenario_path, self.points, self.clearance, self.base = scenario_path, points, clearance, list(base)
         # the records' sensor model (sensor_noise with RATE_KEY, CHANNELS_KEY): the model's own drops
         # are compared as the records are, each landing read ``realisations`` times through it (its
@@ -230,6 +230,10 @@ class _Simulator:
         # the number of measured records whose mean features are compared (:class:`Repeated`); the
         # noise gate's members are means of as many drops
         self.records = records
+        # True: each feature of a variant also carries the scatter of its drops (and reads), added
+        # to the feature's scale (features.ensemble_features' scatter_factor 1/records + 1/drops):
+        # the gap then counts a difference in units of what this model's own chaos lets it scatter
+        self.scatter = bool(scatter)
         # variants already landed, noise-free or read with fixed seeds (overrides -> features per
         # point): the solver is deterministic, so a variant asked for twice (the identifiability probes, then the same
         # values on a calibration's grid or a parameter's screening) is landed once
@@ -246,6 +250,8 @@ class _Simulator:
         drops = ("the centred drop" if self.ensemble <= 1 else
                  f"{self.ensemble} drops spread over the {radius:g} um disc" if self.as_recorded and self.records > 1
                  else f"{self.ensemble} drops from the {radius:g} um circle")
+        if self.scatter:
+            drops += " (each feature's scale widened by the drops' scatter)"
         if not self.as_recorded:
             return drops + ", noise-free"
         rate = self.as_recorded.get(RATE_KEY)
@@ -296,8 +302,9 @@ class _Simulator:
             grouped = [out[j * k:(j + 1) * k] for j in range(len(out) // k)]
             # a drop read several times contributes each read (as many per drop): the features are
             # the mean over drops and reads, the whirl shares over reads
+            factor = 1.0 / max(1, self.records) + 1.0 / k if self.scatter else None
             out = [next((m for m in g if isinstance(m, dict) and "__error__" in m), None)
-                   or ensemble_features([r for m in g for r in (m if isinstance(m, list) else [m])])
+                   or ensemble_features([r for m in g for r in (m if isinstance(m, list) else [m])], factor)
                    for g in grouped]
         n = len(self.points)
         return [out[i * n:(i + 1) * n] for i in range(len(extras))]
@@ -967,7 +974,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
              sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
              ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
-             directed: bool = False, as_recorded: bool = True) -> dict:
+             directed: bool = False, as_recorded: bool = True, scatter_scales: bool = False) -> dict:
     """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is),
     :class:`Repeated` (the features of several records of one point: compared as their means, the
     model then an ensemble of as many drops unless ``ensemble`` > 1 says otherwise) or a list of
@@ -983,7 +990,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     when it shrinks it more than fitting it to the gate's noise members does (:func:`_directed_test`).
     ``as_recorded``: the model's drops are read through the records' sensor model (their noise,
     logger rate and channels, where known) as the records were (:class:`_Simulator`); False: the
-    noise-free model (diagnose until session 46)."""
+    noise-free model (diagnose until session 46). ``scatter_scales``: every feature is charged in
+    units of its scale and the model variant's own scatter over its drops and reads together
+    (:data:`features.SCATTER`; opt-in, session 48)."""
     from .scenario import load_scenario
 
     t_start = time.perf_counter()
@@ -1020,7 +1029,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     current_values = _current_values(base, parameters)
     sim = _Simulator(scenario_path, points, clearance, workers, base_overrides, ensemble=ensemble,
                      ensemble_radius_m=ensemble_radius_m, records=records,
-                     as_recorded=sensor_noise_sigma if as_recorded else None)
+                     as_recorded=sensor_noise_sigma if as_recorded else None, scatter=scatter_scales)
     terms: list[Term] = []
     named, steps, warnings = [], [], []
     try:
@@ -1251,7 +1260,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                         "whirl_measured": p.features.get("whirl_direction", (None,))[0],
                         "whirl_before": d0, "whirl_after": d1}
                        for p, d0, d1 in zip(points, directions_before, current_dirs)],
-            "ensemble": ensemble, "model_read": sim.read_description(), "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
+            "ensemble": ensemble, "scatter_scales": bool(scatter_scales), "model_read": sim.read_description(), "simulations": sim.count, "wall_s": round(time.perf_counter() - t_start, 1), "workers": workers}
 
 
 def _public(noise: dict | None) -> dict | None:

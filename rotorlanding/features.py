@@ -34,6 +34,10 @@ MAX_DISTANCE = DIRECTION_MISMATCH
 #: the gap when the model lacks it would hide the clearest sign of a missing effect (issue 20)
 ABSENT_FEATURE_DISTANCE = MAX_DISTANCE
 WHIRL_DIRECTIONS = ("none", "forward", "backward")
+#: an ensemble's per-feature scatter (name -> standard deviation of the difference of means, in the
+#: feature's unit), added in quadrature to the feature's scale in :func:`gap` (``ensemble_features``'
+#: ``scatter_factor``); absent, the fixed scales alone count
+SCATTER = "__scatter__"
 
 #: per-journal features, name without the bearing prefix -> unit (the name's suffix)
 _JOURNAL_UNITS = {
@@ -211,7 +215,7 @@ def _journal_features(m: Measurement, *, clearance: float, bearing: str, t_drop:
 WHIRL_SHARES = "__whirl_by_direction__"
 
 
-def ensemble_features(members: list[dict]) -> dict:
+def ensemble_features(members: list[dict], scatter_factor: float | None = None) -> dict:
     """The features of an ensemble of drops (issue 20, point 1: a gap that does not hinge on one
     chaotic trajectory): the whirl direction by majority (ties to the whirl class,
     ``ensemble._majority``; per direction the share of members, :data:`WHIRL_SHARES`), whirl
@@ -222,7 +226,14 @@ def ensemble_features(members: list[dict]) -> dict:
     from one regime to the other where the mean follows the share smoothly.
     Per direction, :data:`WHIRL_SHARES` also holds the same means over that direction's members
     alone (``"features"``): the gap compares the landings of the measured regime with the model's
-    of that regime, and charges the regimes' shares in the whirl row (:func:`_rows`)."""
+    of that regime, and charges the regimes' shares in the whirl row (:func:`_rows`).
+    ``scatter_factor`` f (None: off): each mean feature also carries sqrt(f) times the members'
+    standard deviation (:data:`SCATTER`), which the gap adds to its scale in quadrature. With f =
+    1/R + 1/E (R records compared with the means of E model drops) that is the standard deviation of
+    the difference of the two means were the data drawn from this model, so a feature is charged in
+    units of what the landing's own chaos lets it scatter (the first rebound of a thrust landing
+    spreads 200-293 um over 8 drops of one model, 3.7 of its 10 um scales), not in its fixed scale
+    alone (session 48, docs/measured_data.md)."""
     from collections import Counter
     from statistics import mean, median
 
@@ -243,9 +254,33 @@ def ensemble_features(members: list[dict]) -> dict:
                 if have:
                     entry[name] = (mean(v for v, _ in have), median(sc for _, sc in have))
             entry["features"] = _member_means(same, whirl_rows=False)
+            if scatter_factor is not None:
+                entry["features"][SCATTER] = _member_scatter(same, scatter_factor, ("whirl_frequency_hz", "whirl_onset_s"))
+                entry[SCATTER] = _member_scatter(same, scatter_factor, keep=("whirl_frequency_hz", "whirl_onset_s"))
             by[d] = entry
         out[WHIRL_SHARES] = by
     out.update(_member_means(members))
+    if scatter_factor is not None:
+        out[SCATTER] = _member_scatter(members, scatter_factor, ("whirl_frequency_hz", "whirl_onset_s"))
+        majority = [m for m in members if m.get("whirl_direction", (None,))[0] == out.get("whirl_direction", (None,))[0]]
+        out[SCATTER].update(_member_scatter(majority, scatter_factor, keep=("whirl_frequency_hz", "whirl_onset_s")))
+    return out
+
+
+def _member_scatter(members: list[dict], factor: float, skip=(), keep=None) -> dict:
+    """sqrt(``factor``) times the sample standard deviation of each numeric feature over the
+    members that have it (at least 2); ``skip`` / ``keep``: names left out / the only names."""
+    from statistics import stdev
+
+    out = {}
+    names = sorted({k for m in members for k in m} - {"whirl_direction", WHIRL_SHARES, SCATTER})
+    for name in names:
+        if name in skip or (keep is not None and name not in keep):
+            continue
+        vals = [m[name][0] for m in members if name in m and isinstance(m[name][0], (int, float))
+                and not isinstance(m[name][0], bool)]
+        if len(vals) >= 2:
+            out[name] = math.sqrt(factor) * stdev(vals)
     return out
 
 
@@ -260,7 +295,7 @@ def _member_means(members: list[dict], whirl_rows: bool = True) -> dict:
     dirs = [m["whirl_direction"][0] for m in members if "whirl_direction" in m]
     direction = _majority(Counter(dirs)) if dirs else None
     out: dict = {}
-    names = sorted({k for m in members for k in m} - {"whirl_direction", WHIRL_SHARES})
+    names = sorted({k for m in members for k in m} - {"whirl_direction", WHIRL_SHARES, SCATTER})
     for name in names:
         pool = members
         if name in ("whirl_frequency_hz", "whirl_onset_s"):
@@ -380,16 +415,18 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
     in_regime = (shares or {}).get(dm, {}).get("features") if dm is not None else None
     measured_in_regime = (measured_shares or {}).get(dm, {}).get("features") if dm is not None else None
     for name in sorted(measured):
-        if name == WHIRL_SHARES:
+        if name in (WHIRL_SHARES, SCATTER):
             continue
         vm, sm = measured[name]
         vs, ss = simulated.get(name, (None, None))
+        scatter = (simulated.get(SCATTER) or {}).get(name)
         if name not in ("whirl_direction", "whirl_frequency_hz", "whirl_onset_s"):
             if measured_in_regime and name in measured_in_regime:
                 vm, sm = measured_in_regime[name]
             if in_regime and name in in_regime:
                 vs, ss = in_regime[name]
-        absent = None
+                scatter = (in_regime.get(SCATTER) or {}).get(name)
+        absent, used_scatter = None, None
         if shares is not None and dm is not None and name in ("whirl_direction", "whirl_frequency_hz", "whirl_onset_s"):
             # an ensemble: charge the share of members that miss the measured direction, and the
             # frequency / onset of the members that whirl that way (smooth across a whirl threshold)
@@ -408,6 +445,8 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
                 got = entry.get(name)
                 vs = got[0] if got else None
                 scale = sm or (got[1] if got else None)
+                if scale and (sc := (entry.get(SCATTER) or {}).get(name)):
+                    scale = math.hypot(scale, sc)
                 d = DIRECTION_MISMATCH * miss + (entry["share"] * soft_cap(abs(vm - vs) / scale) if got and scale else 0.0)
             rows.append({"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
                          "weight": weights.get(name, 1.0), "share": entry["share"]})
@@ -435,10 +474,14 @@ def _rows(measured: dict, simulated: dict, weights: dict) -> list[dict]:
             else:
                 if not scale:
                     continue
+                if scatter:
+                    scale, used_scatter = math.hypot(scale, scatter), scatter
                 d = soft_cap(abs(vm - vs) / scale)
         row = {"feature": name, "measured": vm, "simulated": vs, "scale": sm or ss, "distance": d,
                "weight": weights.get(name, 1.0)}
         if absent:
             row["absent_in"] = absent
+        if used_scatter:
+            row["scatter"] = used_scatter  # the scale used: hypot(scale, scatter)
         rows.append(row)
     return rows

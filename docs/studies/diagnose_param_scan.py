@@ -10,7 +10,7 @@ over the disc, each read 8 times). The scan's gap at the scenario's own value mu
 bench's "gap before" (a check that this is diagnose's landscape, printed).
 
 usage: RECORDS=4 python docs/studies/diagnose_param_scan.py CASE KEY LO HI N [--log] [--ensemble M]
-       [--out scan.json]
+       [--set KEY=VALUE ...] [--scatter-scales] [--out scan.json]
 """
 from __future__ import annotations
 
@@ -28,7 +28,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
 
-def build(name: str, records: int, workers: int = 2, ensemble: int | None = None):
+def build(name: str, records: int, workers: int = 2, ensemble: int | None = None, scatter: bool = False):
     """The case and the simulator diagnose builds for its records (``ensemble``: the model's drops
     per variant; None: as diagnose, as many as records)."""
     import diagnose_bench as B
@@ -56,7 +56,8 @@ def build(name: str, records: int, workers: int = 2, ensemble: int | None = None
         feats = ensemble_features(meas.features)
     noise = records_sensor_model(info["sensor_noise"], info["sampling_rate_hz"], info["channels"])
     sim = _Simulator(model, [Point("", [], _journal_rows(feats, DEFAULT_JOURNALS))], clearance, workers, [],
-                     ensemble=ensemble or records, records=records, as_recorded=noise)
+                     ensemble=ensemble or records, records=records, as_recorded=noise,
+                     scatter=scatter)
     return case, sim
 
 
@@ -70,15 +71,18 @@ def main(argv=None) -> int:
     ap.add_argument("--log", action="store_true", help="log-spaced values")
     ap.add_argument("--ensemble", type=int, default=None,
                     help="the model's drops per variant (default: as diagnose, as many as records)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="also set this in every variant (e.g. effects.axial_rub=true, to scan an effect's parameter)")
+    ap.add_argument("--scatter-scales", action="store_true", help="diagnose --scatter-scales (session 48)")
     ap.add_argument("--out", default=None)
     a = ap.parse_args(argv)
     records = int(os.environ.get("RECORDS", "4"))
     values = (np.geomspace if a.log else np.linspace)(a.lo, a.hi, a.n)
-    case, sim = build(a.case, records, ensemble=a.ensemble)
+    case, sim = build(a.case, records, ensemble=a.ensemble, scatter=a.scatter_scales)
     try:
         g0 = sim.gap([])[0]
         print(f"{a.case}, {records} record(s): the model as it is, gap {g0:.3f}", flush=True)
-        res = sim.gaps([[f"{a.key}={float(v)!r}"] for v in values])
+        res = sim.gaps([[*a.set, f"{a.key}={float(v)!r}"] for v in values])
     finally:
         sim.close()
     rows = [{"value": float(v), "gap": float(g),
@@ -90,7 +94,7 @@ def main(argv=None) -> int:
         from rotorlanding.safeio import atomic_write_text
 
         atomic_write_text(Path(a.out), json.dumps({"case": a.case, "records": records, "key": a.key,
-                                                   "ensemble": a.ensemble or records,
+                                                   "ensemble": a.ensemble or records, "sets": a.set, "scatter_scales": a.scatter_scales,
                                                    "truth_sets": case["sets"], "gap_as_is": g0, "scan": rows},
                                                   indent=1))
     return 0

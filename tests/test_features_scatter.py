@@ -1,0 +1,76 @@
+"""Features charged in units of the model's own scatter (``ensemble_features(..., scatter_factor)``,
+session 48): a chaotic feature's difference of means counts against sqrt(scale^2 + f s^2), s the
+drops' standard deviation, f = 1/R + 1/E for R records against the mean of E model drops. Checked
+against the closed form, computed here independently; off (None) nothing changes."""
+import math
+import statistics
+
+from rotorlanding.features import SCATTER, ensemble_features, gap, soft_cap
+
+SCALE = 1e-5  # a first rebound's scale: 0.05 c of a 0.2 mm clearance
+
+
+def _drop(rebound, direction="forward", freq=60.0):
+    return {"whirl_direction": (direction, None), "DE_first_rebound_m": (rebound, SCALE),
+            "whirl_frequency_hz": (freq, 2.0)}
+
+
+def _row(rows, name):
+    return next(r for r in rows if r["feature"] == name)
+
+
+MODEL = [_drop(v, freq=f) for v, f in ((2.25e-4, 58.0), (2.02e-4, 61.0), (2.80e-4, 60.0), (2.93e-4, 63.0))]
+RECORD = _drop(2.23e-4, freq=66.0)
+
+
+def test_off_the_gap_is_the_fixed_scales_alone():
+    model = ensemble_features(MODEL)
+    assert SCATTER not in model
+    _, rows = gap(RECORD, model)
+    mean = statistics.mean(v["DE_first_rebound_m"][0] for v in MODEL)
+    d = abs(2.23e-4 - mean) / SCALE
+    assert math.isclose(_row(rows, "DE_first_rebound_m")["distance"], soft_cap(d))
+    assert "scatter" not in _row(rows, "DE_first_rebound_m")
+
+
+def test_one_record_against_four_drops_is_charged_in_the_drops_scatter():
+    """R = 1, E = 4: f = 1.25; the rebound's drops scatter 42 um, so a 27 um difference of means
+    (2.7 scales) is 0.56 of sqrt(scale^2 + 1.25 s^2)."""
+    f = 1.0 + 1.0 / len(MODEL)
+    model = ensemble_features(MODEL, scatter_factor=f)
+    vals = [m["DE_first_rebound_m"][0] for m in MODEL]
+    s = statistics.stdev(vals)
+    assert math.isclose(model[SCATTER]["DE_first_rebound_m"], math.sqrt(f) * s)
+    _, rows = gap(RECORD, model)
+    row = _row(rows, "DE_first_rebound_m")
+    expected = abs(2.23e-4 - statistics.mean(vals)) / math.sqrt(SCALE ** 2 + f * s * s)
+    assert math.isclose(row["distance"], soft_cap(expected))
+    assert expected < 0.7 < abs(2.23e-4 - statistics.mean(vals)) / SCALE / 3  # the scatter matters here
+    # the whirl frequency of the members whirling the measured way: its scatter too
+    fs = statistics.stdev(m["whirl_frequency_hz"][0] for m in MODEL)
+    freq = _row(rows, "whirl_frequency_hz")
+    expected_f = abs(66.0 - statistics.mean(m["whirl_frequency_hz"][0] for m in MODEL)) / math.hypot(2.0, math.sqrt(f) * fs)
+    assert math.isclose(freq["distance"], soft_cap(expected_f))
+
+
+def test_a_model_without_scatter_is_charged_as_before():
+    """Identical drops: no scatter to add, the fixed scale alone (a calm landing keeps its power)."""
+    same = [_drop(2.6e-4)] * 4
+    on = gap(RECORD, ensemble_features(same, scatter_factor=1.25))
+    off = gap(RECORD, ensemble_features(same))
+    assert math.isclose(on[0], off[0])
+    assert math.isclose(_row(on[1], "DE_first_rebound_m")["distance"], soft_cap(3.7))
+
+
+def test_within_a_regime_the_regime_drops_scatter_counts():
+    """Records calm, model 2 calm drops of 1 and 3 um and 2 whirling ones of 200 um: the calm
+    regime's extremes are compared with the calm drops' mean and scatter (not the pooled one)."""
+    calm = [{"whirl_direction": ("none", None), "DE_vertical_max_m": (v, 2e-5)} for v in (1e-6, 3e-6)]
+    wild = [{"whirl_direction": ("forward", None), "DE_vertical_max_m": (2e-4, 2e-5)}] * 2
+    records = ensemble_features([{"whirl_direction": ("none", None), "DE_vertical_max_m": (5e-5, 2e-5)}] * 4)
+    f = 0.25 + 0.25
+    model = ensemble_features(calm + wild, scatter_factor=f)
+    _, rows = gap(records, model)
+    s = statistics.stdev([1e-6, 3e-6])
+    expected = abs(5e-5 - 2e-6) / math.sqrt(2e-5 ** 2 + f * s * s)
+    assert math.isclose(_row(rows, "DE_vertical_max_m")["distance"], soft_cap(expected))
