@@ -357,7 +357,7 @@ def cmd_diagnose(args) -> int:
                               candidates=cands, max_effects=args.max_effects, workers=args.workers,
                               maxiter=args.maxiter, time_offset_s=args.time_offset_s, parameters=params,
                               noise_gap=args.noise_gap, ensemble=args.ensemble,
-                              ensemble_radius_m=args.ensemble_radius_m,
+                              ensemble_radius_m=args.ensemble_radius_m, scatter_scales=args.scatter_scales,
                               journals=[j.strip() for j in args.journals.split(",") if j.strip()])
     out = args.out
     for w in res["warnings"]:
@@ -559,6 +559,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="drops per model variant (from a 5 um circle; over its disc with repeated records); "
                          "features become the ensemble's statistics, a gap smooth in the parameters (default 1: one "
                          "drop, or as many as the records; with records at least as many)")
+    dg.add_argument("--scatter-scales", action="store_true",
+                    help="charge each feature in units of its scale and the model's own scatter over its drops "
+                         "(with --ensemble >= 2 or repeated records; opt-in, docs/measured_data.md session 48)")
     dg.add_argument("--ensemble-radius-m", type=float, default=None,
                     help="radius of the drop circle of --ensemble [m] (default 5e-6, an AMB's position error)")
     dg.add_argument("--journals", default="DE",

@@ -1711,7 +1711,7 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
                  max_effects: int = 1, workers: int = 2, maxiter: int = 10, time_offset_s: float | None = None,
                  parameters=None, noise_gap: float | None = None, ensemble: int = 1,
                  ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
-                 cli_names: bool = True) -> tuple[dict, list[str]]:
+                 cli_names: bool = True, scatter_scales: bool = False) -> tuple[dict, list[str]]:
     """``rotorlanding diagnose`` without its printing: validate the options, read the measurement,
     run :func:`diagnose`, write ``out_dir``/report.json, report.md and the figure; returns (the
     report, the names of the files written besides report.json). The command line and the API's
@@ -1784,7 +1784,7 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     res = diagnose(meas, scenario_path, clearance=clearance, candidates=cands, max_effects=max_effects,
                    workers=workers, maxiter=maxiter, base_overrides=sets, parameters=params,
                    noise_gap=noise_gap, info=info, ensemble=ensemble, ensemble_radius_m=ensemble_radius_m,
-                   journals=journals)
+                   journals=journals, scatter_scales=scatter_scales)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / "report.json", json.dumps(res, indent=2, default=float))
