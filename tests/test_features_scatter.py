@@ -74,3 +74,38 @@ def test_within_a_regime_the_regime_drops_scatter_counts():
     s = statistics.stdev([1e-6, 3e-6])
     expected = abs(5e-5 - 2e-6) / math.sqrt(2e-5 ** 2 + f * s * s)
     assert math.isclose(_row(rows, "DE_vertical_max_m")["distance"], soft_cap(expected))
+
+
+class _FakePool:
+    """The pool of a :class:`_Simulator`: each job's 'landing' a linear function of its drop point."""
+
+    def map(self, fn, jobs, failures="raise"):
+        out = []
+        for job in jobs:
+            off = next(o for o in job[1] if o.startswith("amb.drop_offset_m"))
+            y, z = (float(v) for v in off.split("=", 1)[1].strip("[]").split(","))
+            out.append({"DE_vertical_min_m": (-2e-4 + 4.0 * z, 2e-5), "DE_horizontal_max_m": (1e-4 + 4.0 * y, 2e-5)})
+        return out
+
+
+def _fake_sim(records, ensemble, scatter):
+    from rotorlanding.diagnose_run import Point, _Simulator
+
+    sim = _Simulator.__new__(_Simulator)
+    sim.scenario_path, sim.points, sim.clearance, sim.base = "model.toml", [Point("", [], {})], 2e-4, []
+    sim.as_recorded, sim.realisations, sim.pool, sim.count, sim.memo = None, 1, _FakePool(), 0, {}
+    sim.ensemble, sim.radius, sim.records, sim.scatter = ensemble, None, records, scatter
+    return sim
+
+
+def test_the_simulator_widens_by_one_over_records_plus_one_over_drops():
+    """diagnose's model: E drops per variant against R records, f = 1/R + 1/E (one record, four
+    drops: 1.25), computed here from the drops' own points; off, no scatter is attached."""
+    from rotorlanding.ensemble import drop_offsets
+
+    zs = [float(o[0].split("=", 1)[1].strip("[]").split(",")[1]) for o in drop_offsets(4)]
+    s = statistics.stdev(-2e-4 + 4.0 * z for z in zs)
+    for records, f in ((1, 1.25), (4, 0.5)):
+        feats = _fake_sim(records, 4, True).features([[]])[0][0]
+        assert math.isclose(feats[SCATTER]["DE_vertical_min_m"], math.sqrt(f) * s)
+    assert SCATTER not in _fake_sim(1, 4, False).features([[]])[0][0]
