@@ -179,7 +179,7 @@ def write_records(i: int, case: dict, model: Path, tmp: Path, sen: dict, repeats
 
 def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
              directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0,
-             as_recorded: bool = True, scatter_scales: bool = False) -> dict:
+             as_recorded: bool = True, scatter_scales: bool | None = None) -> dict:
     from sensor_model import THRUST, known_rig_model
 
     from rotorlanding.diagnose_run import diagnose, measured_for_diagnosis, records_for_diagnosis
@@ -294,9 +294,9 @@ def main(argv=None) -> int:
     ap.add_argument("--noise-free-model", action="store_true",
                     help="diagnose(as_recorded=False): the model's drops noise-free, as diagnose had them until "
                          "session 46 (for an A/B)")
-    ap.add_argument("--scatter-scales", action="store_true",
-                    help="diagnose(scatter_scales=True): each feature's scale widened by the model's own drop scatter "
-                         "(session 48; needs --ensemble or --repeats > 1 to have a scatter beyond the reads)")
+    ap.add_argument("--scatter-scales", action=argparse.BooleanOptionalAction, default=None,
+                    help="diagnose(scatter_scales=...): each feature's scale widened by the model's own drop scatter "
+                         "(session 48; default as diagnose's since session 50: on with --ensemble or --repeats > 1)")
     a = ap.parse_args(argv)
     out = Path(a.out)
     if out.is_dir() or a.out.endswith("/"):  # a folder: the table goes inside it, not over it (a crash after case 1)

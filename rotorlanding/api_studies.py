@@ -514,7 +514,7 @@ class Diagnosis:
 def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: float | None = None,
              candidates=None, max_effects: int = 1, workers: int = 2, maxiter: int = 10,
              time_offset_s: float | None = None, parameters=None, noise_gap: float | None = None,
-             ensemble: int = 1, journals=("DE",), scatter_scales: bool = False) -> Diagnosis:
+             ensemble: int = 1, journals=("DE",), scatter_scales: bool | None = None) -> Diagnosis:
     """Model-gap diagnosis: which effect the model lacks explains where it and a measurement
     disagree (``rotorlanding diagnose``: the same code and files, ``out_dir``/report.json,
     report.md, overlay.png or features.png).
@@ -543,7 +543,8 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
         journals: whose per-journal features are compared (``--journals``): ``("DE",)`` or
             ``("DE", "NDE")`` (the NDE's landing depth, mean orbit, impact force, race spin-up).
         scatter_scales: each feature charged in units of its scale and the model's own scatter
-            over its drops (``--scatter-scales``; opt-in, with ``ensemble`` >= 2 or repeated records).
+            over its drops (``--scatter-scales``; None: on with ``ensemble`` >= 2 or repeated records,
+            where that scatter is measured, off for one drop).
 
     Returns a :class:`Diagnosis` (``.named_effect``, ``.gap_before`` / ``.gap_after``,
     ``.calibrated``, ``.plot_features()``); its report equals the command's on the same input
@@ -572,7 +573,7 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
                  candidates=candidates, max_effects=max_effects, workers=workers, maxiter=maxiter,
                  time_offset_s=time_offset_s, parameters=parameters, noise_gap=noise_gap, ensemble=ensemble,
                  journals=journals.split(",") if isinstance(journals, str) else journals, cli_names=False,
-                 scatter_scales=bool(scatter_scales))
+                 scatter_scales=scatter_scales)
     return Diagnosis(out_dir)
 
 

@@ -559,9 +559,10 @@ def build_parser() -> argparse.ArgumentParser:
                     help="drops per model variant (from a 5 um circle; over its disc with repeated records); "
                          "features become the ensemble's statistics, a gap smooth in the parameters (default 1: one "
                          "drop, or as many as the records; with records at least as many)")
-    dg.add_argument("--scatter-scales", action="store_true",
+    dg.add_argument("--scatter-scales", action=argparse.BooleanOptionalAction, default=None,
                     help="charge each feature in units of its scale and the model's own scatter over its drops "
-                         "(with --ensemble >= 2 or repeated records; opt-in, docs/measured_data.md session 48)")
+                         "(default: on with --ensemble >= 2 or repeated records, where that scatter is measured, "
+                         "off for one drop; docs/measured_data.md sessions 48-50)")
     dg.add_argument("--ensemble-radius-m", type=float, default=None,
                     help="radius of the drop circle of --ensemble [m] (default 5e-6, an AMB's position error)")
     dg.add_argument("--journals", default="DE",

@@ -968,13 +968,24 @@ def _current_values(base, keys) -> dict:
     return out
 
 
+def scatter_default(scatter_scales: bool | None, ensemble: int) -> bool:
+    """``diagnose``'s ``scatter_scales`` as given, or for None: on when each model variant runs more
+    than one drop (``ensemble``, already raised to the records' number for repeated records)."""
+    if scatter_scales is not None:
+        return bool(scatter_scales)
+    # the model's own chaos is measured only where it drops more than once (one drop's only scatter is
+    # the reads' noise); on the bench (docs/measured_data.md, sessions 48-49) it gave 21 / 34 against 19
+    # with one record and 4 drops, 22 against 21 with four records, the clean controls 7 / 7 quiet in both
+    return ensemble > 1
+
+
 def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_effects: int = 1,
              min_improvement: float = MIN_STEP_IMPROVEMENT, noise_gap: float | None = None, workers: int = 2,
              maxiter: int = 10, t_drop: float = 0.0, base_overrides: list[str] | None = None,
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
              sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
              ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
-             directed: bool = False, as_recorded: bool = True, scatter_scales: bool = False) -> dict:
+             directed: bool = False, as_recorded: bool = True, scatter_scales: bool | None = None) -> dict:
     """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is),
     :class:`Repeated` (the features of several records of one point: compared as their means, the
     model then an ensemble of as many drops unless ``ensemble`` > 1 says otherwise) or a list of
@@ -992,7 +1003,9 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     logger rate and channels, where known) as the records were (:class:`_Simulator`); False: the
     noise-free model (diagnose until session 46). ``scatter_scales``: every feature is charged in
     units of its scale and the model variant's own scatter over its drops and reads together
-    (:data:`features.SCATTER`; opt-in, session 48)."""
+    (:data:`features.SCATTER`, session 48); None (the default, session 50): on whenever the model
+    runs more than one drop per variant (``ensemble`` > 1 or repeated records), where the drops'
+    scatter is measured; off for one drop, whose only scatter would be the reads' noise."""
     from .scenario import load_scenario
 
     t_start = time.perf_counter()
@@ -1014,6 +1027,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                                                                               t_drop=t_drop)
         points = [Point("", [], meas)]
     points = [replace(p, features=_journal_rows(p.features, journals)) for p in points]
+    scatter_scales = scatter_default(scatter_scales, ensemble)
     if sensor_noise_sigma is None:
         sensor_noise_sigma = info.get("sensor_noise")
     rate = info.get("sampling_rate_hz") or (record_rate(measured) if isinstance(measured, Measurement) else None)
@@ -1711,7 +1725,7 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
                  max_effects: int = 1, workers: int = 2, maxiter: int = 10, time_offset_s: float | None = None,
                  parameters=None, noise_gap: float | None = None, ensemble: int = 1,
                  ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
-                 cli_names: bool = True, scatter_scales: bool = False) -> tuple[dict, list[str]]:
+                 cli_names: bool = True, scatter_scales: bool | None = None) -> tuple[dict, list[str]]:
     """``rotorlanding diagnose`` without its printing: validate the options, read the measurement,
     run :func:`diagnose`, write ``out_dir``/report.json, report.md and the figure; returns (the
     report, the names of the files written besides report.json). The command line and the API's
@@ -1728,7 +1742,9 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     [m] (None: the default); ``journals``: whose per-journal features are compared (``("DE",)``
     or ``("DE", "NDE")``; the whirl rows are the DE's). ``cli_names``:
     errors name the options as the command line spells them (``--max-effects``), else as the API's
-    keywords (``max_effects``). Every bad input is one InputError before any simulation."""
+    keywords (``max_effects``). ``scatter_scales``: each feature's scale widened by the model's own
+    drop scatter (None: on when the model runs more than one drop, :func:`diagnose`).
+    Every bad input is one InputError before any simulation."""
     from pathlib import Path
 
     from .safeio import atomic_write_text, check_out_dir
@@ -1740,6 +1756,9 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     for name, v in (("workers", workers), ("maxiter", maxiter), ("max_effects", max_effects), ("ensemble", ensemble)):
         if isinstance(v, bool) or not isinstance(v, int) or v < 1:
             raise InputError(opt(name), v, "must be an integer >= 1")
+    if scatter_scales is not None and not isinstance(scatter_scales, bool):
+        raise InputError(opt("scatter_scales"), scatter_scales, "True, False, or None (on when the model runs more "
+                         "than one drop: --ensemble > 1 or repeated records)")
     sets = list(sets or [])
     for item in sets:
         key = item.split("=", 1)[0].strip()

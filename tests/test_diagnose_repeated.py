@@ -124,6 +124,7 @@ def test_repeated_records_name_a_weak_effect(rig_without_windage, tmp_path):
     res, files = run_diagnose(str(rig_without_windage), [str(p) for p in paths], tmp_path / "dg", maxiter=4,
                               parameters=[], candidates=["windage", "ball_drag"], workers=2, cli_names=False)
     assert res["records"] == 4 and res["ensemble"] == 4 and "means of 4 drops" in res["noise"]["source"]
+    assert res["scatter_scales"] is True  # the default with repeated records (session 50)
     assert res["named_effects"] == ["windage"], (res["gap_before"], res["noise_gate"], res["steps"][0]["candidates"])
     assert res["gap_after"] <= 0.5 * res["gap_before"]
     c_w2 = float(res["calibrated_overrides"][-1].split("=")[1])

@@ -109,3 +109,27 @@ def test_the_simulator_widens_by_one_over_records_plus_one_over_drops():
         feats = _fake_sim(records, 4, True).features([[]])[0][0]
         assert math.isclose(feats[SCATTER]["DE_vertical_min_m"], math.sqrt(f) * s)
     assert SCATTER not in _fake_sim(1, 4, False).features([[]])[0][0]
+
+
+def test_the_default_is_on_where_the_model_drops_more_than_once():
+    """Session 50: ``scatter_scales`` None resolves by the drops per model variant (repeated records
+    raise ``ensemble`` to their number first); an explicit choice is kept; the command line's
+    default is None and ``--no-scatter-scales`` turns it off; a non-bool is one line."""
+    import pytest
+
+    from rotorlanding.cli import build_parser
+    from rotorlanding.diagnose_run import _records_ensemble, run_diagnose, scatter_default
+    from rotorlanding.errors import InputError
+
+    assert scatter_default(None, 1) is False                        # one record, one drop
+    assert scatter_default(None, 4) is True                         # --ensemble 4
+    assert scatter_default(None, _records_ensemble(3, 1)) is True   # three records, ensemble left at 1
+    assert scatter_default(False, 8) is False and scatter_default(True, 1) is True
+    p = build_parser()
+    base = ["diagnose", "--scenario", "m.toml", "--measured", "r.csv", "--out", "o"]
+    assert p.parse_args(base).scatter_scales is None
+    assert p.parse_args(base + ["--scatter-scales"]).scatter_scales is True
+    assert p.parse_args(base + ["--no-scatter-scales"]).scatter_scales is False
+    with pytest.raises(InputError) as e:
+        run_diagnose("m.toml", "r.csv", "o", scatter_scales="yes", cli_names=False)
+    assert e.value.field == "scatter_scales" and e.value.value == "yes"
