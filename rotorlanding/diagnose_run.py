@@ -46,7 +46,7 @@ from scipy.optimize import minimize_scalar
 
 from .effects import CATALOGUE
 from .errors import InputError
-from .features import ABSENT_FEATURE_DISTANCE, JOURNALS, extract_features, gap_points
+from .features import ABSENT_FEATURE_DISTANCE, JOURNALS, RACE_LAG_WINDOW_S, extract_features, gap_points
 from .identifiability import alike_with, assess, signature
 from .measured import Measurement
 from .mechanisms import housing_force, rotor_force
@@ -1034,6 +1034,14 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     channels = info.get("channels") or (sorted(measured.channels) if isinstance(measured, Measurement) else None)
     sensor_noise_sigma = records_sensor_model(sensor_noise_sigma, rate, channels)
     base = load_scenario(scenario_path, base_overrides)
+    warnings_early = []
+    short = sorted({k for p in points for k in p.features if k.endswith("_race_lag_s")})
+    if short and base.t_end < base.amb.t_drop + RACE_LAG_WINDOW_S:
+        # a model run that ends inside the lag's window has no lag to compare (features.race_lag):
+        # left out of the data too, or it would be charged as a feature the model cannot produce
+        points = [replace(p, features={k: v for k, v in p.features.items() if k not in short}) for p in points]
+        warnings_early.append(f"{', '.join(short)} left out: the model's run ends at {base.t_end:g} s, "
+                              f"within the lag's window of {RACE_LAG_WINDOW_S:g} s after the drop")
     if parameters is None:
         parameters = [k for k in DEFAULT_PARAMETERS if k in base.bounds]
     for k in parameters:
@@ -1045,7 +1053,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
                      ensemble_radius_m=ensemble_radius_m, records=records,
                      as_recorded=sensor_noise_sigma if as_recorded else None, scatter=scatter_scales)
     terms: list[Term] = []
-    named, steps, warnings = [], [], []
+    named, steps, warnings = [], [], list(warnings_early)
     try:
         gap_before, rows_before, sims0, err = sim.gap([])
         if err:

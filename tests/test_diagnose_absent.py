@@ -37,15 +37,26 @@ def test_feature_the_model_cannot_produce_is_charged_with_the_stated_penalty():
     g, rows = gap(measured, model)
     row = next(r for r in rows if r["feature"] == "DE_race_spinup_s")
     assert row["absent_in"] == "model" and row["distance"] == ABSENT_FEATURE_DISTANCE == MAX_DISTANCE
-    # independent: every other feature is identical (distance 0), so the gap is sqrt(3^2 / n_rows)
-    assert all(r["distance"] == 0.0 for r in rows if r is not row)
-    assert math.isclose(g, math.sqrt(ABSENT_FEATURE_DISTANCE ** 2 / len(rows)), rel_tol=1e-12)
+    # the race's lag (session 50) is a value on both sides: the window, 0.2 s, for the race that never
+    # turns; for the data's, closed form: the slip 1 - 70000 t / (7000 - 100 t) = 701 - 4.9e6 / (7000 -
+    # 100 t) until T = 7000 / 70100, integrated: 701 T - 4.9e4 ln(7000 / (7000 - 100 T))
+    T = 7000.0 / 70100.0
+    lag_data = 701.0 * T - 4.9e4 * math.log(7000.0 / (7000.0 - 100.0 * T))
+    lag_row = next(r for r in rows if r["feature"] == "DE_race_lag_s")
+    assert math.isclose(lag_row["measured"], lag_data, rel_tol=2e-3) and math.isclose(lag_row["simulated"], 0.2)
+    d_lag = soft_cap((0.2 - lag_data) / max(2e-3, 0.03 * lag_data))
+    assert math.isclose(lag_row["distance"], d_lag, rel_tol=1e-3)
+    # independent: every other feature is identical (distance 0), so the gap is sqrt((3^2 + d_lag^2) / n_rows)
+    assert all(r["distance"] == 0.0 for r in rows if r is not row and r is not lag_row)
+    assert math.isclose(g, math.sqrt((ABSENT_FEATURE_DISTANCE ** 2 + d_lag ** 2) / len(rows)), rel_tol=1e-3)
     # before issue 20 the row was dropped and the gap was 0: the missing spin-up was invisible
     assert g > 0.5
     # the other way round (the data's race never spins up, the model's does): charged as well
     g2, rows2 = gap(model, measured)
     assert next(r for r in rows2 if r["feature"] == "DE_race_spinup_s")["absent_in"] == "measurement"
-    assert math.isclose(g2, g, rel_tol=1e-12)
+    # the lag's scale is the measured side's (3 % of 0.2 s there): its own closed form
+    d_lag2 = soft_cap((0.2 - lag_data) / max(2e-3, 0.03 * 0.2))
+    assert math.isclose(g2, math.sqrt((ABSENT_FEATURE_DISTANCE ** 2 + d_lag2 ** 2) / len(rows2)), rel_tol=1e-3)
 
 
 def test_a_feature_missing_from_the_model_features_is_charged_and_a_shared_absence_is_not():

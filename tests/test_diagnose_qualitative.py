@@ -7,7 +7,11 @@ disc, as a record falls, the gate was 1.63, below the gap. Since session 44 a me
 record's channels only (no contact-force rows, which the record lacks and which sat close between
 drops), and the gate is 2.07, above the gap again: the feature noise cannot produce is what names
 radial friction here (``above_gate`` with a produced feature is tested on its own in
-tests/test_diagnose_repeated.py)."""
+tests/test_diagnose_repeated.py). Since session 50 the race's lag behind the rotor is a feature as
+well (``DE_race_lag_s``): the model's race, never turning, lags the whole 0.2 s window, the data's
+0.12 s, a second charged row, and the gap (2.11) is above the gate (1.94): the spin-up is still
+recorded as the feature the model cannot produce, and radial friction is named by the gap's own
+shrink."""
 
 import sys
 from pathlib import Path
@@ -35,14 +39,16 @@ def test_a_race_spin_up_no_noise_member_produces_is_recorded_and_radial_friction
     res = diagnose(meas, model, clearance=C, candidates=["radial_friction", "windage"], parameters=[], workers=2,
                    maxiter=3, info=info)
     step = res["steps"][0]
-    # the chaotic model's gate, from drops of the disc with the record's channels, is above the gap
-    # (2.07 against 1.99): no shrink of the gap alone could name anything
-    assert res["gap_before"] < res["noise_gate"] < 2.0 * res["gap_before"], (res["gap_before"], res["noise_gate"])
+    # the model's race never turns: it lags the whole window, the data's race a good deal less
+    lag = next(r for r in res["features_before"] if r["feature"] == "DE_race_lag_s")
+    assert abs(lag["simulated"] - 0.2) < 1e-3 and 0.0 < lag["measured"] < 0.15, lag
+    # the chaotic model's gate is near the gap: the lag's row lifts the gap (2.11) just above it (1.94)
+    assert res["noise_gate"] < res["gap_before"] < 1.5 * res["noise_gate"], (res["gap_before"], res["noise_gate"])
     assert res["absent_in_model_before"] == ["DE_race_spinup_s"]
     assert "DE_race_spinup_s" not in res["noise"]["member_features"]
     assert res["named_effect"] == "radial_friction", step
     # the candidate produces the feature the data show and noise cannot: recorded with the step
     assert step["produces_absent_feature"] == ["DE_race_spinup_s"]
-    # inside the gate: the relative rule holds, and the feature noise cannot produce is the reason it counts
-    assert step["significant_by"] == "relative improvement, a feature noise cannot produce"
+    # above the gate: the relative rule alone names it
+    assert step["significant_by"] == "relative improvement"
     assert res["gap_after"] <= 0.7 * res["gap_before"]     # the 30 % rule applies
