@@ -228,7 +228,7 @@ def race_lag(t, race_rpm, rotor_rpm, t_drop: float, window: float = RACE_LAG_WIN
     over the rotor speed. 0 for a race that turns with the rotor from the drop on, ``window`` for
     one that never turns. Unlike the spin-up instant, a 90 % crossing that one chaotic bounce can
     shift, it weighs the whole spin-up, and what slows it throughout (ball drag: the known rig's
-    strong case lags 6.6 ms more of 81.8, 5 times the drops' scatter; its spin-up instant moves 10
+    strong case lags 6.6 ms more of 81.5, 5 times the drops' scatter; its spin-up instant moves 10
     of 146 ms, half its 20 ms scale) shows (session 50). None when the record ends before the
     window does (its lag is not comparable then)."""
     t = np.asarray(t, float)
