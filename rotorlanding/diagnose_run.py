@@ -1035,12 +1035,12 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     sensor_noise_sigma = records_sensor_model(sensor_noise_sigma, rate, channels)
     base = load_scenario(scenario_path, base_overrides)
     warnings_early = []
-    short = sorted({k for p in points for k in p.features if k.endswith("_race_lag_s")})
-    if short and base.t_end < base.amb.t_drop + RACE_LAG_WINDOW_S:
+    lag_rows = sorted({k for p in points for k in p.features if k.endswith("_race_lag_s")})
+    if lag_rows and base.t_end < base.amb.t_drop + RACE_LAG_WINDOW_S:
         # a model run that ends inside the lag's window has no lag to compare (features.race_lag):
         # left out of the data too, or it would be charged as a feature the model cannot produce
-        points = [replace(p, features={k: v for k, v in p.features.items() if k not in short}) for p in points]
-        warnings_early.append(f"{', '.join(short)} left out: the model's run ends at {base.t_end:g} s, "
+        points = [replace(p, features={k: v for k, v in p.features.items() if k not in lag_rows}) for p in points]
+        warnings_early.append(f"{', '.join(lag_rows)} left out: the model's run ends at {base.t_end:g} s, "
                               f"within the lag's window of {RACE_LAG_WINDOW_S:g} s after the drop")
     if parameters is None:
         parameters = [k for k in DEFAULT_PARAMETERS if k in base.bounds]
