@@ -177,7 +177,8 @@ def write_records(i: int, case: dict, model: Path, tmp: Path, sen: dict, repeats
     return recs
 
 
-def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int = 1, repeats: int = 1,
+def run_case(i: int, case: dict, maxiter: int, tmp: Path, journals=("DE",), ensemble: int | None = None,
+             repeats: int = 1,
              directed: bool = False, noise_members: int | None = None, load_cells_n: float = 0.0,
              as_recorded: bool = True, scatter_scales: bool | None = None) -> dict:
     from sensor_model import THRUST, known_rig_model
@@ -279,7 +280,9 @@ def main(argv=None) -> int:
     ap.add_argument("--fresh", action="store_true")
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--journals", default="DE", help="diagnose --journals: DE (default) or DE,NDE")
-    ap.add_argument("--ensemble", type=int, default=1, help="diagnose --ensemble: drops per model variant (default 1)")
+    ap.add_argument("--ensemble", type=int, default=None,
+                    help="diagnose --ensemble: drops per model variant (default as diagnose's since session 51: 4 "
+                         "against one record, as many as the records with --repeats)")
     ap.add_argument("--repeats", type=int, default=1,
                     help="records per case: repeated landings of the rig, each from a random point of the 5 um "
                          "circle's disc, diagnosed together (default 1: one record, also from a random point of the "

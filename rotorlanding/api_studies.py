@@ -514,7 +514,7 @@ class Diagnosis:
 def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: float | None = None,
              candidates=None, max_effects: int = 1, workers: int = 2, maxiter: int = 10,
              time_offset_s: float | None = None, parameters=None, noise_gap: float | None = None,
-             ensemble: int = 1, journals=("DE",), scatter_scales: bool | None = None) -> Diagnosis:
+             ensemble: int | None = None, journals=("DE",), scatter_scales: bool | None = None) -> Diagnosis:
     """Model-gap diagnosis: which effect the model lacks explains where it and a measurement
     disagree (``rotorlanding diagnose``: the same code and files, ``out_dir``/report.json,
     report.md, overlay.png or features.png).
@@ -539,7 +539,8 @@ def diagnose(measured, scenario, out_dir, *, set: dict | None = None, t_end: flo
             None: the default list, []: none).
         noise_gap: the gap below which a disagreement is noise (``--noise-gap``; None: estimated
             from the model's drops with the record's noise).
-        ensemble: drops per feature evaluation (``--ensemble``; 1: one drop).
+        ensemble: drops per feature evaluation (``--ensemble``; 1: one drop; None: 4 against one
+            record, as many as the records of repeated landings, 1 per point of a feature table).
         journals: whose per-journal features are compared (``--journals``): ``("DE",)`` or
             ``("DE", "NDE")`` (the NDE's landing depth, mean orbit, impact force, race spin-up).
         scatter_scales: each feature charged in units of its scale and the model's own scatter

@@ -555,10 +555,11 @@ def build_parser() -> argparse.ArgumentParser:
     dg.add_argument("--parameters", default=None,
                     help="comma-separated [bounds] keys tried as wrong-parameter candidates, or none "
                          "(default: rotorlanding.diagnose_run.DEFAULT_PARAMETERS the scenario bounds)")
-    dg.add_argument("--ensemble", type=int, default=1,
+    dg.add_argument("--ensemble", type=int, default=None,
                     help="drops per model variant (from a 5 um circle; over its disc with repeated records); "
-                         "features become the ensemble's statistics, a gap smooth in the parameters (default 1: one "
-                         "drop, or as many as the records; with records at least as many)")
+                         "features become the ensemble's statistics, a gap smooth in the parameters (default: 4 "
+                         "against one record, as many as the records of repeated landings, 1 per point of a "
+                         "feature table; with records at least as many; 1: one drop)")
     dg.add_argument("--scatter-scales", action=argparse.BooleanOptionalAction, default=None,
                     help="charge each feature in units of its scale and the model's own scatter over its drops "
                          "(default: on with --ensemble >= 2 or repeated records, where that scatter is measured, "

@@ -968,6 +968,25 @@ def _current_values(base, keys) -> dict:
     return out
 
 
+#: the model's drops per variant against one time record when ``ensemble`` is left out (session 51).
+#: On the bench's one-record cases 4 drops gave 23 / 34 right with the 7 clean controls quiet, one drop
+#: 20 / 34 with a false alarm (clean 2 um); a one-point, one-effect case takes 106-161 s on one core
+#: (docs/measured_data.md, sessions 50-51)
+RECORD_DROPS = 4
+
+
+def ensemble_default(ensemble: int | None, measured, info: dict | None = None) -> int:
+    """``diagnose``'s ``ensemble`` as given, or for None: :data:`RECORD_DROPS` against one time
+    record (a :class:`Measurement`, or the features :func:`measured_for_diagnosis` extracted from one,
+    known by its ``info``'s channels), 1 otherwise: repeated records then get as many drops as records
+    (:func:`_records_ensemble`), and a feature table's numbers, one landing's each, one drop per point,
+    as the paper's tables were validated."""
+    if ensemble is not None:
+        return ensemble
+    one_record = isinstance(measured, Measurement) or isinstance(measured, dict) and bool((info or {}).get("channels"))
+    return RECORD_DROPS if one_record else 1
+
+
 def scatter_default(scatter_scales: bool | None, ensemble: int) -> bool:
     """``diagnose``'s ``scatter_scales`` as given, or for None: on when each model variant runs more
     than one drop (``ensemble``, already raised to the records' number for repeated records)."""
@@ -984,7 +1003,7 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
              maxiter: int = 10, t_drop: float = 0.0, base_overrides: list[str] | None = None,
              parameters: list[str] | None = None, noise_members: int = NOISE_MEMBERS,
              sensor_noise_sigma: dict | None = None, refit: bool = True, info: dict | None = None,
-             ensemble: int = 1, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
+             ensemble: int | None = None, ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
              directed: bool = False, as_recorded: bool = True, scatter_scales: bool | None = None) -> dict:
     """``measured``: a Measurement (channels), a feature dict (one point: the scenario as it is),
     :class:`Repeated` (the features of several records of one point: compared as their means, the
@@ -1005,11 +1024,15 @@ def diagnose(measured, scenario_path, *, clearance: float, candidates=None, max_
     units of its scale and the model variant's own scatter over its drops and reads together
     (:data:`features.SCATTER`, session 48); None (the default, session 50): on whenever the model
     runs more than one drop per variant (``ensemble`` > 1 or repeated records), where the drops'
-    scatter is measured; off for one drop, whose only scatter would be the reads' noise."""
+    scatter is measured; off for one drop, whose only scatter would be the reads' noise.
+    ``ensemble``: drops per model variant; None (the default, session 51): :func:`ensemble_default`,
+    4 against one time record, as many as the records of repeated landings, 1 per point of a
+    feature table."""
     from .scenario import load_scenario
 
     t_start = time.perf_counter()
     info = dict(info or {})
+    ensemble = ensemble_default(ensemble, measured, info)
     base_overrides = list(base_overrides or [])
     records = 1
     if isinstance(measured, Repeated):
@@ -1731,7 +1754,7 @@ def write_report(res: dict, out_dir, measured: Measurement | None, scenario_path
 
 def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float | None = None, candidates=None,
                  max_effects: int = 1, workers: int = 2, maxiter: int = 10, time_offset_s: float | None = None,
-                 parameters=None, noise_gap: float | None = None, ensemble: int = 1,
+                 parameters=None, noise_gap: float | None = None, ensemble: int | None = None,
                  ensemble_radius_m: float | None = None, journals=DEFAULT_JOURNALS,
                  cli_names: bool = True, scatter_scales: bool | None = None) -> tuple[dict, list[str]]:
     """``rotorlanding diagnose`` without its printing: validate the options, read the measurement,
@@ -1746,8 +1769,8 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     ``time_offset_s`` [s]: the drop instant in the data's clock (None: detected); ``parameters``: the
     scenario keys tried as wrong parameters beside the effects (None: the default list, [] none);
     ``noise_gap``: the gate (None: estimated from the model's drops with the record's noise);
-    ``ensemble``: drops per feature evaluation (1: one drop), from a circle of ``ensemble_radius_m``
-    [m] (None: the default); ``journals``: whose per-journal features are compared (``("DE",)``
+    ``ensemble``: drops per feature evaluation (1: one drop; None: :func:`ensemble_default`, 4
+    against one record), from a circle of ``ensemble_radius_m`` [m] (None: the default); ``journals``: whose per-journal features are compared (``("DE",)``
     or ``("DE", "NDE")``; the whirl rows are the DE's). ``cli_names``:
     errors name the options as the command line spells them (``--max-effects``), else as the API's
     keywords (``max_effects``). ``scatter_scales``: each feature's scale widened by the model's own
@@ -1761,7 +1784,8 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
     def opt(name: str) -> str:
         return "--" + name.replace("_", "-") if cli_names else name
 
-    for name, v in (("workers", workers), ("maxiter", maxiter), ("max_effects", max_effects), ("ensemble", ensemble)):
+    for name, v in (("workers", workers), ("maxiter", maxiter), ("max_effects", max_effects),
+                    ("ensemble", 1 if ensemble is None else ensemble)):
         if isinstance(v, bool) or not isinstance(v, int) or v < 1:
             raise InputError(opt(name), v, "must be an integer >= 1")
     if scatter_scales is not None and not isinstance(scatter_scales, bool):
@@ -1793,7 +1817,7 @@ def run_diagnose(scenario_path, measured_path, out_dir, *, sets=(), t_end: float
             raise
         raise InputError(err.field[2:].replace("-", "_"), err.value, err.allowed, file=err.file) from None
     if isinstance(meas, Repeated):
-        _records_ensemble(len(meas.features), ensemble, opt("ensemble"))  # before any simulation
+        _records_ensemble(len(meas.features), ensemble or 1, opt("ensemble"))  # before any simulation
     journals = tuple(journals)
     if not journals or journals[0] != "DE" or any(j not in JOURNALS for j in journals) or len(set(journals)) < len(journals):
         raise InputError(opt("journals"), ",".join(journals), "DE, or DE,NDE (the whirl rows are the DE journal's)")

@@ -65,7 +65,7 @@ def test_cli_with_csv_data(model_without_windage, tmp_path, capsys):
                comments="")
     out = tmp_path / "diag"
     assert main(["diagnose", "--measured", str(csv), "--scenario", str(model_without_windage), "--out", str(out),
-                 "--workers", "1", "--time-offset-s", "5.0", "--maxiter", "4"]) == 0
+                 "--workers", "1", "--time-offset-s", "5.0", "--maxiter", "4", "--ensemble", "1"]) == 0
     rep = json.loads((out / "report.json").read_text())
     assert rep["named_effect"] == "windage"
     assert "windage" in capsys.readouterr().out

@@ -130,7 +130,7 @@ def test_cli_names_the_feature_the_model_cannot_produce_first(tmp_path, capsys):
     write_record(model, ["effects.radial_friction=true", "contact.mu_rad=0.3"], csv, clearance=C, seed=4)
     out = tmp_path / "diag"
     assert main(["diagnose", "--measured", str(csv), "--scenario", str(model), "--out", str(out),
-                 "--candidates", "radial_friction", "--parameters", "none", "--maxiter", "3"]) == 0
+                 "--candidates", "radial_friction", "--parameters", "none", "--maxiter", "3", "--ensemble", "1"]) == 0
     rep = json.loads((out / "report.json").read_text())
     assert rep["absent_in_model_before"] == ["DE_race_spinup_s"] and rep["absent_in_model_after"] == []
     assert rep["named_effect"] == "radial_friction"

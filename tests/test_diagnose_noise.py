@@ -39,7 +39,7 @@ def test_noise_gate_from_the_data_keeps_a_chaotic_clean_control_silent(tmp_path)
     assert info["sensor_noise"] == pytest.approx(sig)
     assert "time_offset" not in info and drop == 3.0
     res = diagnose(meas, model, clearance=C, candidates=["windage"], parameters=["bearings.DE.clearance"],
-                   workers=2, maxiter=3, info=info)
+                   workers=2, maxiter=3, info=info, ensemble=1)
     assert res["gap_before"] > 0.3            # the old constant gate would have let it through
     assert res["noise_gate"] > res["gap_before"], res["noise"]
     assert res["named_effect"] is None and res["named_parameters"] == [] and res["explanation"] == "none"
@@ -65,7 +65,7 @@ def test_a_late_time_offset_is_warned_about(tmp_path, capsys, given, warned):
     write_record(model, [], csv, clearance=C, seed=5, drop_at_s=3.0)
     out = tmp_path / "diag"
     assert main(["diagnose", "--measured", str(csv), "--scenario", str(model), "--out", str(out),
-                 "--candidates", "windage", "--parameters", "none", "--maxiter", "1",
+                 "--candidates", "windage", "--parameters", "none", "--maxiter", "1", "--ensemble", "1",
                  "--time-offset-s", repr(given)]) == 0
     err = capsys.readouterr().err
     rep = json.loads((out / "report.json").read_text())

@@ -33,7 +33,7 @@ def test_a_wrong_mass_is_reported_as_a_wrong_parameter_not_a_missing_effect(heav
 
     model, meas, info, d = heavy_hub
     res = diagnose(meas, model, clearance=C, candidates=["windage", "ribbon_cross_coupling"], workers=2,
-                   maxiter=5, info=info)
+                   maxiter=5, info=info, ensemble=1)
     assert res["named_effect"] is None and res["explanation"] == "parameter", res["steps"]
     (q,) = res["named_parameters"]
     assert q["key"] == "rotor.disks.3.mass" and q["from"] == 4.0 and q["to"] == pytest.approx(7.0, rel=0.15)
@@ -56,7 +56,7 @@ def test_without_the_right_candidate_the_report_says_unexplained(heavy_hub, tmp_
 
     model, meas, info, d = heavy_hub
     res = diagnose(meas, model, clearance=C, candidates=["windage", "ribbon_cross_coupling"], parameters=[],
-                   workers=2, maxiter=5, info=info)
+                   workers=2, maxiter=5, info=info, ensemble=1)
     assert res["named_effect"] is None and res["named_parameters"] == []
     assert res["unexplained"] and res["explanation"] == "unexplained"
     assert res["gap_after"] == res["gap_before"] > res["noise_gate_final"]
@@ -75,7 +75,7 @@ def test_a_larger_clearance_is_found_as_the_wrong_parameter(tmp_path):
     write_record(model, ["bearings.DE.clearance=2.6e-4"], tmp_path / "rig.csv", clearance=C, seed=11)
     _, m, meas, info = measured_for_diagnosis(model, tmp_path / "rig.csv", [], None)
     res = diagnose(meas, model, clearance=C, candidates=["windage", "ribbon_cross_coupling"], workers=2,
-                   maxiter=5, info=info)
+                   maxiter=5, info=info, ensemble=1)
     assert res["named_effect"] is None and res["explanation"] == "parameter", res["steps"]
     (q,) = res["named_parameters"]
     assert q["key"] == "bearings.DE.clearance" and q["to"] == pytest.approx(2.6e-4, rel=0.1)

@@ -133,3 +133,37 @@ def test_the_default_is_on_where_the_model_drops_more_than_once():
     with pytest.raises(InputError) as e:
         run_diagnose("m.toml", "r.csv", "o", scatter_scales="yes", cli_names=False)
     assert e.value.field == "scatter_scales" and e.value.value == "yes"
+
+
+def test_the_model_drops_four_times_against_one_record_by_default(tmp_path):
+    """Session 51: ``ensemble`` None resolves by what was measured: 4 drops (``RECORD_DROPS``)
+    against one time record, whether given as channels or as the features
+    ``measured_for_diagnosis`` extracted from a CSV; 1 for a feature table (one landing's numbers
+    per point, as the paper's tables were validated) and for repeated records, which
+    ``_records_ensemble`` then raises to their number; an explicit number is kept; the command
+    line's default is None."""
+    import numpy as np
+
+    from sensor_model import C, known_rig_model
+
+    from rotorlanding.cli import build_parser
+    from rotorlanding.diagnose_run import (RECORD_DROPS, Repeated, _records_ensemble, ensemble_default,
+                                           measured_for_diagnosis)
+    from rotorlanding.measured import Measurement
+
+    t = np.arange(0.0, 0.6, 1e-4)
+    z = -0.8 * C * np.clip((t - 0.1) / 0.01, 0.0, 1.0)   # falls onto the bearing 0.1 s into the record
+    csv = tmp_path / "rig.csv"
+    np.savetxt(csv, np.column_stack([t, 0.0 * t, z]), delimiter=",", header="time_s,DE_y_m,DE_z_m", comments="")
+    model = known_rig_model(tmp_path / "model.toml")
+    _, m, feats, info = measured_for_diagnosis(model, csv, [], None)
+    assert RECORD_DROPS == 4
+    assert ensemble_default(None, m) == 4 and ensemble_default(None, feats, info) == 4
+    assert ensemble_default(None, feats, {}) == 1                  # the same numbers as a feature table
+    assert ensemble_default(None, [feats]) == 1                     # operating points
+    rep = Repeated([feats, feats, feats])
+    assert ensemble_default(None, rep, info) == 1 and _records_ensemble(3, ensemble_default(None, rep, info)) == 3
+    assert ensemble_default(1, m) == 1 and ensemble_default(8, feats, info) == 8
+    assert isinstance(m, Measurement) and m.channels
+    p = build_parser()
+    assert p.parse_args(["diagnose", "--scenario", "m.toml", "--measured", "r.csv", "--out", "o"]).ensemble is None
