@@ -56,3 +56,29 @@ def test_extract_features_gives_the_lag_with_its_scale():
     lag, scale = f["DE_race_lag_s"]
     assert lag == pytest.approx(0.02 + 0.05, rel=1e-3)
     assert scale == scale_of("DE_race_lag_s", lag, 2e-4) == pytest.approx(max(2e-3, 0.03 * lag))
+
+
+def test_diagnose_leaves_the_datas_lag_out_when_the_model_run_ends_inside_its_window(tmp_path):
+    """A model run of 0.15 s has no lag over the 0.2 s window: diagnose leaves the data's lag rows
+    out with a warning naming them, instead of charging them as a feature the model cannot produce.
+    Checked against the same diagnosis of the data given without those rows: the same gap, and the
+    lag neither among the rows nor among the features absent from the model."""
+    from sensor_model import C, known_rig_model
+
+    from rotorlanding.diagnose_run import _simulate_features, diagnose
+
+    long_run = known_rig_model(tmp_path / "long.toml", ["windage"], t_end=0.3)
+    data = _simulate_features(long_run, [], C)
+    lag = sorted(k for k in data if k.endswith("_race_lag_s"))
+    assert lag == ["DE_race_lag_s", "NDE_race_lag_s"] and data["DE_race_lag_s"][0] > 0.0   # NDE: not compared
+    short = known_rig_model(tmp_path / "short.toml", ["windage"], t_end=0.15)
+    kw = dict(clearance=C, candidates=["windage"], parameters=[], noise_gap=0.5, workers=1, maxiter=1, ensemble=1)
+    res = diagnose(data, short, **kw)
+    without = diagnose({k: v for k, v in data.items() if k not in lag}, short, **kw)
+    said = [w for w in res["warnings"] if "DE_race_lag_s left out" in w]
+    assert len(said) == 1 and "0.15 s" in said[0] and "0.2 s" in said[0], res["warnings"]
+    assert not any("race_lag" in w for w in without["warnings"])
+    assert res["gap_before"] == without["gap_before"] and res["gap_after"] == without["gap_after"]
+    assert "DE_race_lag_s" not in res["absent_in_model_before"]
+    assert [r["feature"] for r in res["features_before"]] == [r["feature"] for r in without["features_before"]]
+    assert all(r["feature"] != "DE_race_lag_s" for r in res["features_before"] + res["features_after"])
