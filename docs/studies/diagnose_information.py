@@ -26,6 +26,12 @@ sensor model; needs GATE=diagnose); JSONs end in _read.json.
 OWN_DROPS=M (session 47, with OWN=read and RECORDS > 1): the model's own features from M drops over the disc, not R,
 so the as-is and true models' gaps are their expected values, not one draw of R chaotic drops (the gate's members
 stay means of R drops, as the records are); JSONs end in _read_ownM.json.
+SCATTER=1 (session 51, with OWN=read): each feature's scale widened by the model's own scatter over its drops, as
+diagnose does by default whenever the model drops more than once (session 50); JSONs end in _scatter.json.
+GAP=diagnose (session 51, with OWN=read): gap and gate computed by diagnose's own functions (``_Simulator.gap``,
+``_noise_gate``), so the probe is diagnose's comparison by construction; with RECORDS=1 and OWN_DROPS=4 it is the
+default one-record diagnosis (4 drops on the 5 um circle, the gate's members single drops between them); JSONs end
+in _dg.json.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -66,8 +72,18 @@ if OWN_READ and not DIAGNOSE_GATE:
     raise SystemExit("diagnose_information.py: OWN=read needs GATE=diagnose (the records' logger rate for the reads)")
 # OWN_DROPS=M (session 47): the model's own drops per variant (default R, as diagnose)
 OWN_DROPS = int(__import__("os").environ.get("OWN_DROPS", "0")) or None
-if OWN_DROPS and not (OWN_READ and R > 1):
+# GAP=diagnose (session 51): diagnose's own gap and gate functions
+GAP_DIAGNOSE = __import__("os").environ.get("GAP", "probe") == "diagnose"
+if GAP_DIAGNOSE and not OWN_READ:
+    raise SystemExit("diagnose_information.py: GAP=diagnose needs OWN=read (diagnose's reads of the model)")
+if OWN_DROPS and not (OWN_READ and (R > 1 or GAP_DIAGNOSE)):
     raise SystemExit("diagnose_information.py: OWN_DROPS needs OWN=read and RECORDS > 1 (drops over the records' disc)")
+
+
+# SCATTER=1 (session 51): the scales widened by the model's drop scatter (diagnose's default with R > 1)
+SCATTER = __import__("os").environ.get("SCATTER", "0") == "1"
+if SCATTER and not OWN_READ:
+    raise SystemExit("diagnose_information.py: SCATTER=1 needs OWN=read (the scatter is the simulator's, as diagnose's)")
 
 
 def own_offsets(n):
@@ -88,7 +104,21 @@ def whiten(feats, sig):
             out[k] = v
     return out
 
+def analyse_diagnose(sim, extra, noise):
+    # diagnose's comparison itself: the gap of the model with ``extra`` and its noise gate (NOISE_MEMBERS members)
+    from rotorlanding.diagnose_run import NOISE_MEMBERS, _noise_gate
+    g, rows, sims, err = sim.gap(extra)
+    if err:
+        raise RuntimeError(err)
+    ng = _noise_gate(sim, sims, NOISE_MEMBERS, noise, list(extra), journals=DEFAULT_JOURNALS)
+    top = sorted(((r['feature'], round(r['distance'], 2)) for r in rows), key=lambda x: -x[1])[:4]
+    out = {'gap': g, 'gate': ng['gate'], 'members': ng['member_gaps'], 'top': top}
+    return {'phys': out, 'white': out}
+
+
 def analyse(sim, meas_mean, extra, noise):
+    if GAP_DIAGNOSE:
+        return analyse_diagnose(sim, extra, noise)
     # the model diagnose compares: R drops on the circle for R records, the centred drop for one record
     offs = own_offsets(R) if R > 1 else [[]]
     if OWN_READ:
@@ -166,7 +196,7 @@ def main(argv):
         if OWN_READ:
             info['sensor_noise'] = records_sensor_model(info['sensor_noise'], None, info['channels'])
         sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=OWN_DROPS or R, records=R,
-                         as_recorded=info['sensor_noise'] if OWN_READ else None)
+                         as_recorded=info['sensor_noise'] if OWN_READ else None, scatter=SCATTER)
         try:
             res = {'case': name, 'as_is': analyse(sim, mm, [], info['sensor_noise'])}
             if case['kind'] != 'clean':
@@ -185,7 +215,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}{"_scatter" if SCATTER else ""}{"_dg" if GAP_DIAGNOSE else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
