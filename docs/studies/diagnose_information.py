@@ -32,6 +32,7 @@ GAP=diagnose (session 51, with OWN=read): gap and gate computed by diagnose's ow
 ``_noise_gate``), so the probe is diagnose's comparison by construction; with RECORDS=1 and OWN_DROPS=4 it is the
 default one-record diagnosis (4 drops on the 5 um circle, the gate's members single drops between them); JSONs end
 in _dg.json.
+JOURNALS=DE,NDE (session 51): both journals' features compared, as diagnose --journals DE,NDE; JSONs end in _nde.json.
 Output of session 19: docs/studies/diagnose_information/ (4 and 8 records); session 42: *_F.json.
 """
 import sys, json, math, tempfile
@@ -40,7 +41,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]; sys.path.insert(0, str(ROOT / 'tests')); sys.path.insert(0, str(ROOT / 'benchmarks'))
 import diagnose_bench as B
 from sensor_model import C, THRUST, known_rig_model
-from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, _journal_rows, DEFAULT_JOURNALS, gate_bound
+from rotorlanding.diagnose_run import records_for_diagnosis, _Simulator, Point, _journal_rows, gate_bound
 from rotorlanding.ensemble import random_drop_offset, drop_offsets, DROP_RADIUS_M
 from rotorlanding.features import ensemble_features, gap_points, scale_of, WHIRL_SHARES
 R = int(__import__("os").environ.get("RECORDS", "4"))
@@ -72,6 +73,8 @@ if OWN_READ and not DIAGNOSE_GATE:
     raise SystemExit("diagnose_information.py: OWN=read needs GATE=diagnose (the records' logger rate for the reads)")
 # OWN_DROPS=M (session 47): the model's own drops per variant (default R, as diagnose)
 OWN_DROPS = int(__import__("os").environ.get("OWN_DROPS", "0")) or None
+# JOURNALS=DE,NDE (session 51): the journals compared (diagnose's --journals; default DE, diagnose's default)
+DEFAULT_JOURNALS = tuple(__import__("os").environ.get("JOURNALS", "DE").split(","))
 # GAP=diagnose (session 51): diagnose's own gap and gate functions
 GAP_DIAGNOSE = __import__("os").environ.get("GAP", "probe") == "diagnose"
 if GAP_DIAGNOSE and not OWN_READ:
@@ -215,7 +218,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}{"_scatter" if SCATTER else ""}{"_dg" if GAP_DIAGNOSE else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}{"_scatter" if SCATTER else ""}{"_dg" if GAP_DIAGNOSE else ""}{"_nde" if "NDE" in DEFAULT_JOURNALS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
