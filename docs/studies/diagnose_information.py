@@ -74,13 +74,14 @@ if OWN_READ and not DIAGNOSE_GATE:
 # OWN_DROPS=M (session 47): the model's own drops per variant (default R, as diagnose)
 OWN_DROPS = int(__import__("os").environ.get("OWN_DROPS", "0")) or None
 # JOURNALS=DE,NDE (session 51): the journals compared (diagnose's --journals; default DE, diagnose's default)
-DEFAULT_JOURNALS = tuple(__import__("os").environ.get("JOURNALS", "DE").split(","))
+JOURNALS = tuple(__import__("os").environ.get("JOURNALS", "DE").split(","))
 # GAP=diagnose (session 51): diagnose's own gap and gate functions
 GAP_DIAGNOSE = __import__("os").environ.get("GAP", "probe") == "diagnose"
 if GAP_DIAGNOSE and not OWN_READ:
     raise SystemExit("diagnose_information.py: GAP=diagnose needs OWN=read (diagnose's reads of the model)")
 if OWN_DROPS and not (OWN_READ and (R > 1 or GAP_DIAGNOSE)):
-    raise SystemExit("diagnose_information.py: OWN_DROPS needs OWN=read and RECORDS > 1 (drops over the records' disc)")
+    raise SystemExit("diagnose_information.py: OWN_DROPS needs OWN=read and RECORDS > 1 (drops over the records' disc), "
+                     "or GAP=diagnose (with RECORDS=1: drops on the 5 um circle, as diagnose's one-record ensemble)")
 
 
 # SCATTER=1 (session 51): the scales widened by the model's drop scatter (diagnose's default with R > 1)
@@ -113,7 +114,7 @@ def analyse_diagnose(sim, extra, noise):
     g, rows, sims, err = sim.gap(extra)
     if err:
         raise RuntimeError(err)
-    ng = _noise_gate(sim, sims, NOISE_MEMBERS, noise, list(extra), journals=DEFAULT_JOURNALS)
+    ng = _noise_gate(sim, sims, NOISE_MEMBERS, noise, list(extra), journals=JOURNALS)
     top = sorted(((r['feature'], round(r['distance'], 2)) for r in rows), key=lambda x: -x[1])[:4]
     out = {'gap': g, 'gate': ng['gate'], 'members': ng['member_gaps'], 'top': top}
     return {'phys': out, 'white': out}
@@ -142,11 +143,11 @@ def analyse(sim, meas_mean, extra, noise):
         groups = [drop_offsets(R, DROP_RADIUS_M, (g + 1) / (R + 1)) for g in range(4)]
     flat = sim.features([extra + o for grp in groups for o in grp], noise=noise, single=True)
     flat = [f[0] for f in flat]
-    model = _journal_rows(model_feats if OWN_READ else ensemble_features(own), DEFAULT_JOURNALS)
-    members = [_journal_rows(ensemble_features(flat[g * R:(g + 1) * R]), DEFAULT_JOURNALS) for g in range(4)]
+    model = _journal_rows(model_feats if OWN_READ else ensemble_features(own), JOURNALS)
+    members = [_journal_rows(ensemble_features(flat[g * R:(g + 1) * R]), JOURNALS) for g in range(4)]
     if DATA_ROWS:
         members = [{k: v for k, v in m.items() if k in meas_mean} for m in members]
-    singles = [_journal_rows(f, DEFAULT_JOURNALS) for f in own + flat]
+    singles = [_journal_rows(f, JOURNALS) for f in own + flat]
     sig = {}
     for k in model:
         if k in ('whirl_direction', WHIRL_SHARES):
@@ -195,7 +196,7 @@ def main(argv):
         from rotorlanding.diagnose_run import records_sensor_model
         if DIAGNOSE_GATE:
             info['sensor_noise'] = records_sensor_model(info['sensor_noise'], info.get('sampling_rate_hz'))
-        mm = _journal_rows(ensemble_features(meas.features) if R > 1 else meas1, DEFAULT_JOURNALS)
+        mm = _journal_rows(ensemble_features(meas.features) if R > 1 else meas1, JOURNALS)
         if OWN_READ:
             info['sensor_noise'] = records_sensor_model(info['sensor_noise'], None, info['channels'])
         sim = _Simulator(model, [Point('', [], mm)], clearance, 2, [], ensemble=OWN_DROPS or R, records=R,
@@ -218,7 +219,7 @@ def main(argv):
                     a['phys']['gap'], a['phys']['gate'], a['phys']['gap'] / a['phys']['gate'],
                     a['white']['gap'], a['white']['gate'], a['white']['gap'] / a['white']['gate']), a['white']['top'], flush=True)
         OUT.mkdir(parents=True, exist_ok=True)
-        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}{"_scatter" if SCATTER else ""}{"_dg" if GAP_DIAGNOSE else ""}{"_nde" if "NDE" in DEFAULT_JOURNALS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
+        (OUT / f'{name}_R{R}{("_H" if HOUSING else "_F") if FORCE_NOISE_N > 0 else ""}{"_D" if DIAGNOSE_GATE else ""}{"r" if DATA_ROWS else ""}{"_disc" if OWN_DISC else ""}{"_noisy" if OWN_NOISE else ""}{"_read" if OWN_READ else ""}{f"_own{OWN_DROPS}" if OWN_DROPS else ""}{"_scatter" if SCATTER else ""}{"_dg" if GAP_DIAGNOSE else ""}{"_nde" if "NDE" in JOURNALS else ""}.json').write_text(json.dumps(res, default=str, indent=1))
 
 if __name__ == "__main__":
     main(sys.argv[1:])
